@@ -1,0 +1,58 @@
+#include "mesh/mesh.h"
+
+#include <algorithm>
+
+namespace eqmesh {
+
+BoundingBox ComputeBoundingBox(const Mesh& mesh) {
+  BoundingBox box;
+  bool first = true;
+  for (const Face& f : mesh.faces) {
+    for (uint32_t v : f) {
+      if (v >= mesh.positions.size()) continue;
+      const Vec3& p = mesh.positions[v];
+      if (first) {
+        box.min = box.max = p;
+        first = false;
+      } else {
+        box.min = box.min.cwiseMin(p);
+        box.max = box.max.cwiseMax(p);
+      }
+    }
+  }
+  return box;
+}
+
+double BoundingBoxDiagonal(const Mesh& mesh) { return ComputeBoundingBox(mesh).Diagonal(); }
+
+size_t CountReferencedVertices(const Mesh& mesh) {
+  std::vector<uint8_t> used(mesh.positions.size(), 0);
+  size_t count = 0;
+  for (const Face& f : mesh.faces) {
+    for (uint32_t v : f) {
+      if (v < used.size() && !used[v]) {
+        used[v] = 1;
+        ++count;
+      }
+    }
+  }
+  return count;
+}
+
+std::vector<Vec3> VertexNormals(const Mesh& mesh) {
+  std::vector<Vec3> normals(mesh.positions.size(), Vec3::Zero());
+  for (const Face& f : mesh.faces) {
+    const Vec3& a = mesh.positions[f[0]];
+    const Vec3& b = mesh.positions[f[1]];
+    const Vec3& c = mesh.positions[f[2]];
+    const Vec3 n = (b - a).cross(c - a);  // length = 2 * area: area weighting
+    for (uint32_t v : f) normals[v] += n;
+  }
+  for (Vec3& n : normals) {
+    const double len = n.norm();
+    n = len > 0.0 ? Vec3(n / len) : Vec3::Zero();
+  }
+  return normals;
+}
+
+}  // namespace eqmesh

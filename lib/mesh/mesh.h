@@ -1,0 +1,45 @@
+// The triangle mesh every stage passes around: positions plus index triples.
+// Free functions operate on it (pmp-library style); no half-edge structure is
+// imposed on callers.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace eqmesh {
+
+using Vec3 = Eigen::Vector3d;
+using Face = std::array<uint32_t, 3>;
+
+struct Mesh {
+  std::vector<Vec3> positions;
+  std::vector<Face> faces;  // counter-clockwise seen from outside
+
+  size_t num_vertices() const { return positions.size(); }
+  size_t num_faces() const { return faces.size(); }
+};
+
+struct BoundingBox {
+  Vec3 min = Vec3::Constant(0.0);
+  Vec3 max = Vec3::Constant(0.0);
+  double Diagonal() const { return (max - min).norm(); }
+};
+
+// Box of the vertices that some face uses (unreferenced vertices do not count);
+// all zeros for an empty mesh.
+BoundingBox ComputeBoundingBox(const Mesh& mesh);
+
+// Diagonal of ComputeBoundingBox: the PSNR peak of the seed paper.
+double BoundingBoxDiagonal(const Mesh& mesh);
+
+// Number of distinct vertices referenced by faces: the "input vertices" that
+// bits-per-vertex is measured against.
+size_t CountReferencedVertices(const Mesh& mesh);
+
+// Area-weighted vertex normals (zero vector for isolated or degenerate fans).
+std::vector<Vec3> VertexNormals(const Mesh& mesh);
+
+}  // namespace eqmesh

@@ -1,0 +1,51 @@
+// Modified butterfly prediction and local frames for one refinement j -> j+1.
+//
+// Contract shared by the remesher (which pierces along these normals from these
+// points), the wavelet transform and the decoder: everything here depends only on
+// the level-j connectivity and level-j positions, so a decoder can recompute it.
+//
+// Papers: Dyn, Levin, Gregory 1990 (8-point butterfly); Zorin, Schröder, Sweldens
+// 1996 (modified butterfly: extraordinary-vertex and boundary rules).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "mesh/mesh.h"
+#include "mesh/semi_regular.h"
+
+namespace eqmesh {
+
+// Sparse linear stencils in CSR form: odd vertex k of level j is predicted as
+// sum_{i in [offsets[k], offsets[k+1])} weights[i] * position[indices[i]],
+// indices referring to level-j vertices.
+struct StencilTable {
+  std::vector<uint32_t> offsets;
+  std::vector<uint32_t> indices;
+  std::vector<double> weights;
+  size_t size() const { return offsets.empty() ? 0 : offsets.size() - 1; }
+};
+
+// Orthonormal frame at an odd vertex's predicted point.
+struct LocalFrame {
+  Vec3 normal = Vec3::UnitZ();
+  Vec3 tangent = Vec3::UnitX();    // along the parent edge, projected to the tangent plane
+  Vec3 bitangent = Vec3::UnitY();  // normal x tangent
+};
+
+// Modified butterfly stencils for all odd vertices of refinement j -> j+1,
+// including extraordinary (valence != 6) and boundary rules. Connectivity only.
+StencilTable BuildButterflyStencils(const SemiRegularHierarchy& hierarchy, int j);
+
+// out[k] = stencil k applied to `positions` (positions.size() >= NumVertices(j)).
+void ApplyStencils(const StencilTable& stencils, const std::vector<Vec3>& positions,
+                   std::vector<Vec3>* out);
+
+// Frame of each odd vertex of refinement j -> j+1 from level-j positions only.
+// normal = normalize(stencil applied to the area-weighted vertex normals of level j);
+// tangent = parent edge direction projected onto the tangent plane.
+std::vector<LocalFrame> ComputeOddFrames(const SemiRegularHierarchy& hierarchy, int j,
+                                         const StencilTable& stencils,
+                                         const std::vector<Vec3>& positions);
+
+}  // namespace eqmesh

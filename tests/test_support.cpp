@@ -1,0 +1,90 @@
+#include "test_support.h"
+
+#include <cmath>
+#include <sys/stat.h>
+
+#include "mesh/semi_regular.h"
+
+namespace eqmesh::testing {
+
+std::string SharedPath(const std::string& relative) {
+  return std::string(EQMESH_SHARED_DIR) + "/" + relative;
+}
+
+bool HaveSharedMeshes() {
+  struct stat st {};
+  return stat(SharedPath("meshes/MANIFEST.md").c_str(), &st) == 0;
+}
+
+Mesh MakeIcosphere(int subdivisions, double radius) {
+  const double t = (1.0 + std::sqrt(5.0)) / 2.0;
+  Mesh m;
+  m.positions = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
+                 {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+  m.faces = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+             {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4},   {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+             {3, 8, 9},  {4, 9, 5},  {2, 4, 11},  {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+  for (int s = 0; s < subdivisions; ++s) {
+    std::vector<Face> fine;
+    std::vector<Edge> odd;
+    SubdivideConnectivity(static_cast<uint32_t>(m.positions.size()), m.faces, &fine, &odd);
+    for (const Edge& e : odd) m.positions.push_back(0.5 * (m.positions[e[0]] + m.positions[e[1]]));
+    m.faces = std::move(fine);
+  }
+  for (Vec3& p : m.positions) p = radius * p.normalized();
+  return m;
+}
+
+Mesh MakeTorus(int n, int m, double major_radius, double minor_radius) {
+  Mesh mesh;
+  const double two_pi = 2.0 * M_PI;
+  for (int i = 0; i < n; ++i) {
+    const double u = two_pi * i / n;
+    for (int j = 0; j < m; ++j) {
+      const double v = two_pi * j / m;
+      const double r = major_radius + minor_radius * std::cos(v);
+      mesh.positions.emplace_back(r * std::cos(u), r * std::sin(u), minor_radius * std::sin(v));
+    }
+  }
+  auto id = [&](int i, int j) { return static_cast<uint32_t>(((i + n) % n) * m + ((j + m) % m)); };
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < m; ++j) {
+      mesh.faces.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      mesh.faces.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  }
+  return mesh;
+}
+
+Mesh MakeDisc(int rings, double radius) {
+  Mesh mesh;
+  mesh.positions.emplace_back(0, 0, 0);
+  // Ring k has 6k vertices: a hexagonal disc whose interior vertices have valence 6.
+  std::vector<uint32_t> ring_start(rings + 1, 0);
+  for (int k = 1; k <= rings; ++k) {
+    ring_start[k] = static_cast<uint32_t>(mesh.positions.size());
+    for (int i = 0; i < 6 * k; ++i) {
+      const double a = 2.0 * M_PI * i / (6 * k);
+      const double r = radius * k / rings;
+      mesh.positions.emplace_back(r * std::cos(a), r * std::sin(a), 0.0);
+    }
+  }
+  auto at = [&](int k, int i) {
+    if (k == 0) return 0u;
+    return ring_start[k] + static_cast<uint32_t>(((i % (6 * k)) + 6 * k) % (6 * k));
+  };
+  for (int k = 1; k <= rings; ++k) {
+    // Walk the outer ring; each outer vertex i maps to inner position i*(k-1)/k.
+    for (int side = 0; side < 6; ++side) {
+      for (int s = 0; s < k; ++s) {
+        const int outer = side * k + s;
+        const int inner = side * (k - 1) + s;
+        mesh.faces.push_back({at(k - 1, inner), at(k, outer), at(k, outer + 1)});
+        if (s < k - 1) mesh.faces.push_back({at(k - 1, inner), at(k, outer + 1), at(k - 1, inner + 1)});
+      }
+    }
+  }
+  return mesh;
+}
+
+}  // namespace eqmesh::testing

@@ -1,0 +1,23 @@
+// Helpers shared by the tests: synthetic shapes (pmp-library style) and the
+// location of the shared meshes.
+#pragma once
+
+#include <string>
+
+#include "mesh/mesh.h"
+
+namespace eqmesh::testing {
+
+// ../shared/<relative>, e.g. SharedPath("meshes/small/cow.ply").
+std::string SharedPath(const std::string& relative);
+// True when ../shared/meshes exists (CI has it; a bare checkout may not).
+bool HaveSharedMeshes();
+
+// Unit icosphere refined `subdivisions` times (20 * 4^s faces), CCW outward.
+Mesh MakeIcosphere(int subdivisions, double radius = 1.0);
+// Torus around z, major radius R, minor r, n x m quads split in two.
+Mesh MakeTorus(int n, int m, double major_radius = 1.0, double minor_radius = 0.35);
+// Flat disc in the z = 0 plane with `rings` rings: a mesh with one boundary loop.
+Mesh MakeDisc(int rings, double radius = 1.0);
+
+}  // namespace eqmesh::testing

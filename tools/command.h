@@ -1,0 +1,30 @@
+// The eqmesh command line: one file per subcommand (cmd_<name>.cpp), each a thin
+// layer over library functions. A command registers itself with
+// EQMESH_REGISTER_COMMAND; main() dispatches on argv[1].
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace eqmesh::cli {
+
+struct Command {
+  std::string name;
+  std::string summary;                       // one line for `eqmesh --help`
+  std::function<int(int argc, char** argv)> run;  // argv[0] is "eqmesh <name>"
+};
+
+std::vector<Command>& Registry();
+
+struct Registrar {
+  explicit Registrar(Command command) { Registry().push_back(std::move(command)); }
+};
+
+// Prints "eqmesh <command>: error: <message>" on stderr and returns exit code 1.
+int Fail(const std::string& command, const std::string& message);
+
+}  // namespace eqmesh::cli
+
+#define EQMESH_REGISTER_COMMAND(name, summary, fn) \
+  static ::eqmesh::cli::Registrar eqmesh_registrar_##fn({name, summary, fn})
