@@ -33,6 +33,12 @@ struct LocalFrame {
   Vec3 bitangent = Vec3::UnitY();  // normal x tangent
 };
 
+// Neighbour weights s_0..s_{k-1} of Zorin et al.'s rule at an interior vertex of
+// valence k >= 3 (the vertex itself gets 3/4; s_0 belongs to the other endpoint of
+// the edge, s_i to the i-th ring neighbour after it in either rotational
+// direction). Empty for k < 3. Exposed for tests and the format spec.
+std::vector<double> ButterflyExtraordinaryWeights(uint32_t k);
+
 // Modified butterfly stencils for all odd vertices of refinement j -> j+1,
 // including extraordinary (valence != 6) and boundary rules. Connectivity only.
 StencilTable BuildButterflyStencils(const SemiRegularHierarchy& hierarchy, int j);
@@ -41,9 +47,14 @@ StencilTable BuildButterflyStencils(const SemiRegularHierarchy& hierarchy, int j
 void ApplyStencils(const StencilTable& stencils, const std::vector<Vec3>& positions,
                    std::vector<Vec3>* out);
 
-// Frame of each odd vertex of refinement j -> j+1 from level-j positions only.
-// normal = normalize(stencil applied to the area-weighted vertex normals of level j);
-// tangent = parent edge direction projected onto the tangent plane.
+// Frame of each odd vertex of refinement j -> j+1 from level-j positions only
+// (positions.size() >= NumVertices(j); extra entries are ignored). Normative rules,
+// restated exactly in butterfly.cpp's header:
+// normal = normalize(stencil applied to the area-weighted unit vertex normals of
+// level j), falling back to the two faces of the edge, then to +Z;
+// tangent = parent edge direction (b - a) projected onto the tangent plane,
+// falling back to the world axis least aligned with the normal;
+// bitangent = normal x tangent.
 std::vector<LocalFrame> ComputeOddFrames(const SemiRegularHierarchy& hierarchy, int j,
                                          const StencilTable& stencils,
                                          const std::vector<Vec3>& positions);

@@ -1,0 +1,83 @@
+// Every identifier of the .eqm bitstream, in one place (Draco's compression_shared.h
+// pattern). The values are part of the format: NEVER renumber or reuse one; add new
+// values at the end and bump kVersionMinor (compatible addition) or kVersionMajor.
+//
+// Stream layout, version 1.0 (all multi-byte integers little endian; "varint" is
+// unsigned LEB128, "svarint" zig-zag LEB128; ext_spec/ restates this normatively):
+//
+//   magic            4 bytes  "EQMS"
+//   version_major    u8       kVersionMajor
+//   version_minor    u8       kVersionMinor
+//   transform        u8       TransformId
+//   coder            u8       CoderId
+//   levels           u8       J, number of refinement levels, <= kMaxLevels
+//   flags            u8       HeaderFlag bits; unknown bits set -> corrupt
+//   lambda_code      svarint  lambda = 2^(lambda_code / kLogCodeScale), per squared
+//                             quantum: level chunks minimise R[bits] + lambda*D/q0^2
+//   tangential_code  svarint  tangential factor = 2^(tangential_code / kLogCodeScale)
+//   quantum          f32      q0 > 0, world units: coefficient unit of the level coder
+//   base_size        varint   bytes of the base-mesh chunk (> 0)
+//   kept_size        varint   only with kHasKeptExactly: bytes of the kept chunk (> 0)
+//   level_size[J]    varint   bytes of level chunk j = 0..J-1 (refinement j -> j+1)
+//   -- end of header; chunks follow back to back, no padding, nothing after --
+//   base chunk       Draco mesh buffer: the base connectivity and the level-0
+//                    scaling values (positions for unlifted, lifted scaling values
+//                    for lifted), quantized by Draco to the depth the encoder chose.
+//                    Its vertex order defines base vertex numbering.
+//   kept chunk       Draco mesh buffer of SemiRegularMesh::kept_exactly.
+//   level chunks     opaque to the container; for kCoderEq one EqLevel chunk each
+//                    (lib/coding/eq), decoded against the hierarchy level layout.
+//
+// A reader that stops after level chunk k has a complete level-(k+1) mesh: the level
+// table lets it know every chunk's byte range from the header alone.
+#pragma once
+
+#include <cstdint>
+
+namespace eqmesh::bitstream {
+
+constexpr uint8_t kMagic[4] = {'E', 'Q', 'M', 'S'};
+constexpr uint8_t kVersionMajor = 1;
+constexpr uint8_t kVersionMinor = 0;
+
+// Wavelet transform the level chunks are expressed in. Pinned values.
+enum class TransformId : uint8_t {
+  kUnlifted = 0,  // interpolating butterfly: detail = position - prediction
+  kLifted = 1,    // butterfly predict + update lifting step (lib/wavelet/transform.h)
+};
+
+// Coefficient coder of the level chunks. Pinned values.
+enum class CoderId : uint8_t {
+  kEq = 0,        // Estimation-Quantization coder (Lavu, Choi, Baraniuk 2003)
+  kZerotree = 1,  // reserved: zerotree coder (Khodakovsky, Guskov)
+  kUniform = 2,   // baseline: uniform scalar quantizer + adaptive Exp-Golomb (level_codec.h)
+};
+constexpr uint8_t kMaxCoderId = 2;
+
+// Bits of the header's flags byte. Pinned values.
+enum HeaderFlag : uint8_t {
+  kHasKeptExactly = 1u << 0,  // a kept-exactly chunk follows the base chunk
+};
+constexpr uint8_t kKnownFlags = kHasKeptExactly;
+
+// lambda and the tangential factor travel as log2 codes in 1/kLogCodeScale steps;
+// the encoder codes with the value the decoder will rebuild from the code.
+constexpr double kLogCodeScale = 64.0;
+constexpr int64_t kMaxLogCode = 64 * 200;  // |log2| <= 200: far beyond any sane value
+
+// Limits the decoder enforces before allocating (hostile-stream safety).
+constexpr int kMaxLevels = 12;
+constexpr uint64_t kMaxChunkBytes = uint64_t{1} << 32;
+constexpr uint32_t kMaxBaseVertices = 1u << 20;
+constexpr uint64_t kMaxFinestFaces = uint64_t{1} << 24;
+
+// Draco settings of the base and kept chunks (encoder side, listed here because the
+// kept chunk precision is a format promise: "kept exactly" to this many bits).
+constexpr int kBaseMinBits = 8;
+constexpr int kBaseMaxBits = 20;
+constexpr int kKeptBits = 20;
+
+// The encoder's quantum q0 = bbox diagonal * 2^-kQuantumLog2 (the decoder reads q0).
+constexpr int kQuantumLog2 = 16;
+
+}  // namespace eqmesh::bitstream

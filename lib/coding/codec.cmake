@@ -1,0 +1,34 @@
+# Codec assembly: the .eqm container, base-mesh chunk, closed-loop encoder, decoder.
+# eqmesh_decoder is decoder-side (never links encoder code or the remesher);
+# eqmesh_encoder links it so both sides share one bitstream definition.
+set(EQMESH_CODEC_DIR "${CMAKE_CURRENT_LIST_DIR}")
+
+add_library(eqmesh_decoder STATIC
+  ${EQMESH_CODEC_DIR}/byte_io.cpp
+  ${EQMESH_CODEC_DIR}/base_mesh_decoder.cpp
+  ${EQMESH_CODEC_DIR}/stream_header.cpp
+  ${EQMESH_CODEC_DIR}/level_codec.cpp
+  ${EQMESH_CODEC_DIR}/level_synthesis.cpp
+  ${EQMESH_CODEC_DIR}/decoder.cpp)
+target_include_directories(eqmesh_decoder PUBLIC "${PROJECT_SOURCE_DIR}/lib")
+# draco's imported targets lack Eigen's include path, so Eigen comes first via mesh.
+target_link_libraries(eqmesh_decoder PUBLIC eqmesh_eq_decoder eqmesh_entropy eqmesh_wavelet
+                      eqmesh_mesh Eigen3::Eigen PRIVATE draco::draco)
+
+add_library(eqmesh_encoder STATIC
+  ${EQMESH_CODEC_DIR}/base_mesh_encoder.cpp
+  ${EQMESH_CODEC_DIR}/semi_regular_reorder.cpp
+  ${EQMESH_CODEC_DIR}/base_influence.cpp
+  ${EQMESH_CODEC_DIR}/level_encoder.cpp
+  ${EQMESH_CODEC_DIR}/encoder.cpp
+  ${EQMESH_CODEC_DIR}/rate_control.cpp)
+target_link_libraries(eqmesh_encoder PUBLIC eqmesh_decoder eqmesh_eq_encoder PRIVATE draco::draco)
+# lib/remesh is added after lib/coding, so test for its directory, not its target.
+if(EXISTS "${PROJECT_SOURCE_DIR}/lib/remesh/CMakeLists.txt")
+  target_link_libraries(eqmesh_encoder PUBLIC eqmesh_remesh)
+endif()
+if(TARGET eqmesh_metrics)
+  target_link_libraries(eqmesh_encoder PUBLIC eqmesh_metrics)
+  target_compile_definitions(eqmesh_encoder PRIVATE EQMESH_HAVE_METRICS=1)
+endif()
+

@@ -1,0 +1,145 @@
+#include "coding/decoder.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "coding/base_mesh_decoder.h"
+#include "coding/level_codec.h"
+#include "coding/level_synthesis.h"
+#include "coding/stream_header.h"
+
+namespace eqmesh {
+namespace {
+
+StreamInfo MakeStreamInfo(const StreamHeader& h, size_t header_size) {
+  StreamInfo s;
+  s.version_major = h.version_major;
+  s.version_minor = h.version_minor;
+  s.transform = h.transform;
+  s.coder = h.coder;
+  s.levels = h.levels;
+  s.lambda = h.lambda();
+  s.tangential_factor = h.tangential_factor();
+  s.quantum = h.quantum;
+  s.has_kept_exactly = h.has_kept();
+  s.header_size = header_size;
+  s.base_offset = header_size;
+  s.base_size = h.base_size;
+  s.kept_offset = s.base_offset + s.base_size;
+  s.kept_size = h.kept_size;
+  uint64_t offset = s.kept_offset + s.kept_size;
+  s.prefix_size.push_back(offset);
+  for (const uint64_t size : h.level_sizes) {
+    s.level_offsets.push_back(offset);
+    s.level_sizes.push_back(size);
+    offset += size;  // each <= 2^32, at most kMaxLevels + 2 of them: no overflow
+    s.prefix_size.push_back(offset);
+  }
+  s.total_size = offset;
+  return s;
+}
+
+int LevelsToDecode(const StreamInfo& s, size_t size, const DecodeOptions& options) {
+  int levels = s.levels;
+  if (options.max_level >= 0) levels = std::min(levels, options.max_level);
+  while (levels > 0 && s.prefix_size[levels] > size) --levels;
+  return levels;
+}
+
+Status CheckLength(const StreamInfo& s, size_t size, const DecodeOptions& options) {
+  if (size > s.total_size) {
+    return CorruptStream("eqm stream: " + std::to_string(size - s.total_size) +
+                         " trailing bytes after the last chunk");
+  }
+  if (size < s.prefix_size[0]) {
+    return CorruptStream("eqm stream truncated before the base mesh ends (" + std::to_string(size) +
+                         " of " + std::to_string(s.total_size) + " bytes)");
+  }
+  if (size < s.total_size && !options.allow_truncated) {
+    return CorruptStream("eqm stream truncated (" + std::to_string(size) + " of " +
+                         std::to_string(s.total_size) + " bytes)");
+  }
+  return Status::Ok();
+}
+
+StatusOr<Mesh> DecodeBase(const uint8_t* data, const StreamInfo& s) {
+  const DracoMeshLimits limits{bitstream::kMaxBaseVertices, bitstream::kMaxFinestFaces};
+  return DecodeDracoMesh(data + s.base_offset, s.base_size, limits, "eqm base mesh chunk");
+}
+
+StatusOr<Mesh> DecodeKept(const uint8_t* data, const StreamInfo& s) {
+  if (!s.has_kept_exactly) return Mesh();
+  const DracoMeshLimits limits{static_cast<uint32_t>(bitstream::kMaxFinestFaces),
+                               bitstream::kMaxFinestFaces};
+  return DecodeDracoMesh(data + s.kept_offset, s.kept_size, limits, "eqm kept-exactly chunk");
+}
+
+Status CheckFinite(const std::vector<Vec3>& values, int level) {
+  for (const Vec3& v : values) {
+    if (!v.allFinite()) {
+      return CorruptStream("eqm level " + std::to_string(level) + " decodes to non-finite positions");
+    }
+  }
+  return Status::Ok();
+}
+
+// Runs the refinements 0 .. levels-1 on top of the decoded base.
+Status DecodeLevels(const uint8_t* data, const StreamInfo& s, const StreamHeader& h, int levels,
+                    SemiRegularMesh* mesh) {
+  const LevelCodingParams params{h.coder, h.lambda(), h.tangential_factor(), h.quantum};
+  for (int j = 0; j < levels; ++j) {
+    const LevelSynthesis step(mesh->hierarchy, j, h.transform);
+    const std::vector<LocalFrame> frames = step.Frames(mesh->positions);
+    EQMESH_ASSIGN_OR_RETURN(std::vector<Vec3> local,
+                            DecodeLevelCoefficients(params, mesh->hierarchy, j,
+                                                    data + s.level_offsets[j], s.level_sizes[j]));
+    std::vector<Vec3> fine;
+    EQMESH_RETURN_IF_ERROR(step.Synthesize(mesh->positions, frames, local, &fine));
+    EQMESH_RETURN_IF_ERROR(CheckFinite(fine, j + 1));
+    mesh->positions = std::move(fine);
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
+StatusOr<StreamInfo> ReadStreamInfo(const uint8_t* data, size_t size) {
+  size_t header_size = 0;
+  EQMESH_ASSIGN_OR_RETURN(StreamHeader h, ReadStreamHeader(data, size, &header_size));
+  return MakeStreamInfo(h, header_size);
+}
+
+StatusOr<SemiRegularMesh> DecodeSemiRegular(const uint8_t* data, size_t size,
+                                            const DecodeOptions& options, DecodeInfo* info) {
+  size_t header_size = 0;
+  EQMESH_ASSIGN_OR_RETURN(StreamHeader h, ReadStreamHeader(data, size, &header_size));
+  const StreamInfo s = MakeStreamInfo(h, header_size);
+  EQMESH_RETURN_IF_ERROR(CheckLength(s, size, options));
+  const int levels = LevelsToDecode(s, size, options);
+
+  EQMESH_ASSIGN_OR_RETURN(Mesh base, DecodeBase(data, s));
+  SemiRegularMesh mesh;
+  EQMESH_ASSIGN_OR_RETURN(mesh.kept_exactly, DecodeKept(data, s));
+  auto hierarchy = SemiRegularHierarchy::Build(static_cast<uint32_t>(base.positions.size()),
+                                               std::move(base.faces), levels,
+                                               bitstream::kMaxFinestFaces);
+  if (!hierarchy.ok()) return hierarchy.status().WithContext("eqm base mesh chunk");
+  mesh.hierarchy = std::move(hierarchy).value();
+  mesh.positions = std::move(base.positions);
+  EQMESH_RETURN_IF_ERROR(DecodeLevels(data, s, h, levels, &mesh));
+  if (info) {
+    info->stream = s;
+    info->levels_in_stream = s.levels;
+    info->levels_decoded = levels;
+    info->truncated = size < s.total_size;
+  }
+  return mesh;
+}
+
+StatusOr<Mesh> Decode(const uint8_t* data, size_t size, const DecodeOptions& options,
+                      DecodeInfo* info) {
+  EQMESH_ASSIGN_OR_RETURN(SemiRegularMesh mesh, DecodeSemiRegular(data, size, options, info));
+  return ExtractLevel(mesh, mesh.hierarchy.levels());
+}
+
+}  // namespace eqmesh

@@ -1,0 +1,76 @@
+// eqmesh decoder: .eqm stream -> mesh at any level of detail.
+//
+// Safe for untrusted input: every read is bounds-checked, declared counts are
+// checked against the remaining bytes and against fixed limits
+// (bitstream_shared.h) before anything is allocated; malformed input gives a
+// non-OK Status (kCorruptStream, kUnsupportedVersion, kUnsupportedFeature,
+// kResourceLimit), never a crash or hang. A valid but hostile stream can still
+// decode to garbage geometry (finite values, bounded size).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "coding/bitstream_shared.h"
+#include "core/status.h"
+#include "mesh/mesh.h"
+#include "mesh/semi_regular.h"
+
+namespace eqmesh {
+
+// The header and the byte range of every chunk (what a glTF loader needs to fetch
+// a coarse level first). Offsets are from the start of the stream.
+struct StreamInfo {
+  uint8_t version_major = 0;
+  uint8_t version_minor = 0;
+  bitstream::TransformId transform = bitstream::TransformId::kUnlifted;
+  bitstream::CoderId coder = bitstream::CoderId::kEq;
+  int levels = 0;  // refinement levels in the stream (level count J)
+  double lambda = 0;
+  double tangential_factor = 0;
+  double quantum = 0;
+  bool has_kept_exactly = false;
+  uint64_t header_size = 0;
+  uint64_t base_offset = 0, base_size = 0;
+  uint64_t kept_offset = 0, kept_size = 0;  // size 0 when absent
+  std::vector<uint64_t> level_offsets;      // chunk of refinement j -> j+1
+  std::vector<uint64_t> level_sizes;
+  uint64_t total_size = 0;                  // bytes of the complete stream
+  // Bytes needed to decode up to level k (k = 0..levels): a progressive loader
+  // fetches the first prefix_size[k] bytes to show level k.
+  std::vector<uint64_t> prefix_size;
+};
+
+// Parses the header only; `size` may be a prefix of the stream (>= header).
+StatusOr<StreamInfo> ReadStreamInfo(const uint8_t* data, size_t size);
+
+struct DecodeOptions {
+  // Finest level to reconstruct: -1 = all; larger than the stream's level count
+  // means all (DecodeInfo::levels_decoded says what was decoded).
+  int max_level = -1;
+  // A stream prefix that ends inside a level chunk: false -> kCorruptStream;
+  // true -> decode the levels whose chunks are complete. A prefix that ends before
+  // the base (and kept) chunks end is always an error.
+  bool allow_truncated = false;
+};
+
+struct DecodeInfo {
+  StreamInfo stream;
+  int levels_in_stream = 0;
+  int levels_decoded = 0;   // the returned mesh is this level
+  bool truncated = false;   // the input was a strict prefix of the stream
+};
+
+// Full-resolution (or max_level) mesh: the semi-regular level with the
+// kept-exactly components appended.
+StatusOr<Mesh> Decode(const uint8_t* data, size_t size, const DecodeOptions& options = {},
+                      DecodeInfo* info = nullptr);
+
+// Same, keeping the semi-regular structure (hierarchy built to levels_decoded;
+// kinds empty).
+StatusOr<SemiRegularMesh> DecodeSemiRegular(const uint8_t* data, size_t size,
+                                            const DecodeOptions& options = {},
+                                            DecodeInfo* info = nullptr);
+
+}  // namespace eqmesh

@@ -1,0 +1,68 @@
+// eqmesh encoder: semi-regular (normal) mesh -> scale-wise progressive .eqm stream.
+//
+// Papers: Lavu, Choi, Baraniuk, SGP 2003 (EQ coding of normal-mesh wavelet
+// coefficients, lambda-driven R-D quantization, tangential lambda x100);
+// Khodakovsky, Schröder, Sweldens 2000 (PGC: butterfly wavelets in local frames).
+// Departures: the encoder is closed-loop (details are computed against the
+// geometry the decoder reconstructs, level by level, so quantization error does
+// not accumulate); the base scaling values' quantization depth is chosen by the
+// same J = R + lambda D (base_mesh_encoder.h); see encoder.cpp for the exact loop.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "coding/bitstream_shared.h"
+#include "core/progress.h"
+#include "core/status.h"
+#include "mesh/mesh.h"
+#include "mesh/semi_regular.h"
+
+namespace eqmesh {
+
+struct EncodeOptions {
+  bitstream::TransformId transform = bitstream::TransformId::kUnlifted;
+  bitstream::CoderId coder = bitstream::CoderId::kEq;
+  // R-D slope, dimensionless: every part of the stream minimises
+  // R[bits] + lambda * D / q0^2 with q0 = bbox diagonal * 2^-16 and D the squared
+  // error in world units. Used as is when no target is set; otherwise the start of
+  // the search. Range (0, 2^200).
+  double lambda = 1.0 / 64.0;
+  // Targets (at most one may be > 0): bits per input vertex (hit within +-3 % by a
+  // search on lambda; needs input_vertices), or PSNR in dB of the decoded
+  // full-resolution mesh against *original (smallest stream that meets it).
+  double target_bpv = 0;
+  double target_psnr = 0;
+  // Tangential components use lambda / tangential_factor (seed paper: 100).
+  double tangential_factor = 100.0;
+  // Vertices of the original irregular mesh (the bpv denominator).
+  size_t input_vertices = 0;
+  // The original irregular mesh, for target_psnr and measure_psnr.
+  const Mesh* original = nullptr;
+  // Decode the final stream and measure its PSNR against *original.
+  bool measure_psnr = false;
+  ProgressFn progress;
+};
+
+struct EncodeReport {
+  double lambda = 0;          // as coded (after the log2 code)
+  int lambda_code = 0;
+  int base_bits = 0;          // Draco depth chosen for the base scaling values
+  size_t header_bytes = 0;
+  size_t base_bytes = 0;
+  size_t kept_bytes = 0;
+  std::vector<size_t> level_bytes;
+  size_t total_bytes = 0;
+  double bpv = 0;             // 8 * total_bytes / input_vertices (0 if unknown)
+  double psnr_db = 0;         // when measured (target_psnr or measure_psnr)
+  bool psnr_measured = false;
+  int rate_evaluations = 0;   // encodes the lambda search ran
+};
+
+// Encodes `mesh` (positions at every level; kinds may be empty). Deterministic:
+// the same input and options give the same bytes.
+StatusOr<std::vector<uint8_t>> Encode(const SemiRegularMesh& mesh, const EncodeOptions& options,
+                                      EncodeReport* report = nullptr);
+
+}  // namespace eqmesh

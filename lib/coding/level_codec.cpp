@@ -1,0 +1,83 @@
+#include "coding/level_codec.h"
+
+#include <array>
+#include <cmath>
+#include <string>
+
+#include "coding/entropy/range_coder.h"
+
+namespace eqmesh {
+namespace {
+
+using uniform_coder::kMaxEscapePrefix;
+using uniform_coder::kUnaryLimit;
+
+struct ComponentModel {
+  AdaptiveBit zero;
+  std::array<AdaptiveBit, kUnaryLimit> unary;
+};
+
+int64_t DecodeSymbol(RangeDecoder* rc, ComponentModel* m) {
+  if (rc->DecodeBit(&m->zero) == 0) return 0;
+  const bool negative = rc->DecodeBits(1) != 0;
+  int64_t magnitude = 1;
+  int i = 0;
+  while (i < kUnaryLimit && rc->DecodeBit(&m->unary[i]) == 1) {
+    ++magnitude;
+    ++i;
+  }
+  if (i == kUnaryLimit) magnitude += rc->DecodeExpGolomb(0, kMaxEscapePrefix);
+  return negative ? -magnitude : magnitude;
+}
+
+StatusOr<std::vector<Vec3>> DecodeUniform(const LevelCodingParams& params, uint32_t count,
+                                          const uint8_t* data, size_t size, int j) {
+  RangeDecoder rc(data, size);
+  std::array<ComponentModel, 3> models;
+  const double steps[3] = {UniformStep(params, false), UniformStep(params, true),
+                           UniformStep(params, true)};
+  std::vector<Vec3> out(count);
+  for (uint32_t k = 0; k < count; ++k) {
+    for (int c = 0; c < 3; ++c) {
+      out[k][c] = static_cast<double>(DecodeSymbol(&rc, &models[c])) * steps[c];
+    }
+    // A hostile chunk runs past its end quickly; stop at the first sign of it.
+    if (!rc.ok()) break;
+  }
+  if (!rc.ok()) {
+    return CorruptStream("level chunk " + std::to_string(j) + ": uniform coder data corrupt or truncated");
+  }
+  return out;
+}
+
+// Adapter to lib/coding/eq (filled in when the EQ level decoder lands).
+StatusOr<std::vector<Vec3>> DecodeEqCoefficients(const LevelCodingParams&,
+                                                 const SemiRegularHierarchy&, int, const uint8_t*,
+                                                 size_t) {
+  return UnsupportedFeature("EQ level decoder not available in this build");
+}
+
+}  // namespace
+
+double UniformStep(const LevelCodingParams& params, bool tangential) {
+  const double lambda = tangential ? params.lambda / params.tangential_factor : params.lambda;
+  return params.quantum * std::sqrt(6.0 / (lambda * std::log(2.0)));
+}
+
+StatusOr<std::vector<Vec3>> DecodeLevelCoefficients(const LevelCodingParams& params,
+                                                    const SemiRegularHierarchy& hierarchy, int j,
+                                                    const uint8_t* data, size_t size) {
+  const uint32_t count = hierarchy.NumOddVertices(j);
+  switch (params.coder) {
+    case bitstream::CoderId::kUniform:
+      return DecodeUniform(params, count, data, size, j);
+    case bitstream::CoderId::kEq:
+      return DecodeEqCoefficients(params, hierarchy, j, data, size);
+    case bitstream::CoderId::kZerotree:
+      break;
+  }
+  return UnsupportedFeature("level coder " + std::to_string(static_cast<int>(params.coder)) +
+                            " is not in this build");
+}
+
+}  // namespace eqmesh

@@ -1,0 +1,81 @@
+#include "coding/level_encoder.h"
+
+#include <array>
+#include <cmath>
+#include <cstdlib>
+
+#include "coding/entropy/range_coder.h"
+
+namespace eqmesh {
+namespace {
+
+using uniform_coder::kMaxEscapePrefix;
+using uniform_coder::kUnaryLimit;
+
+struct ComponentModel {
+  AdaptiveBit zero;
+  std::array<AdaptiveBit, kUnaryLimit> unary;
+};
+
+// Largest magnitude the decoder accepts (Exp-Golomb escape with kMaxEscapePrefix).
+constexpr int64_t kMaxMagnitude = kUnaryLimit + (int64_t{1} << kMaxEscapePrefix);
+
+void EncodeSymbol(RangeEncoder* rc, ComponentModel* m, int64_t q) {
+  rc->EncodeBit(&m->zero, q != 0);
+  if (q == 0) return;
+  rc->EncodeBits(q < 0 ? 1u : 0u, 1);
+  const int64_t extra = std::llabs(q) - 1;
+  for (int i = 0; i < kUnaryLimit; ++i) {
+    const int bit = extra > i ? 1 : 0;
+    rc->EncodeBit(&m->unary[i], bit);
+    if (!bit) return;
+  }
+  rc->EncodeExpGolomb(static_cast<uint32_t>(extra - kUnaryLimit), 0);
+}
+
+std::vector<uint8_t> EncodeUniform(const LevelCodingParams& params, const std::vector<Vec3>& local,
+                                   std::vector<Vec3>* reconstructed) {
+  RangeEncoder rc;
+  std::array<ComponentModel, 3> models;
+  const double steps[3] = {UniformStep(params, false), UniformStep(params, true),
+                           UniformStep(params, true)};
+  reconstructed->resize(local.size());
+  for (size_t k = 0; k < local.size(); ++k) {
+    for (int c = 0; c < 3; ++c) {
+      const double scaled = std::clamp(local[k][c] / steps[c], -double(kMaxMagnitude),
+                                       double(kMaxMagnitude));
+      const int64_t q = std::llround(scaled);
+      EncodeSymbol(&rc, &models[c], q);
+      (*reconstructed)[k][c] = static_cast<double>(q) * steps[c];
+    }
+  }
+  return rc.Finish();
+}
+
+// Adapter to lib/coding/eq (filled in when the EQ level encoder lands).
+StatusOr<std::vector<uint8_t>> EncodeEq(const LevelCodingParams&, const SemiRegularHierarchy&, int,
+                                        const std::vector<Vec3>&, std::vector<Vec3>*) {
+  return UnsupportedFeature("EQ level encoder not available in this build");
+}
+
+}  // namespace
+
+StatusOr<std::vector<uint8_t>> EncodeLevelCoefficients(const LevelCodingParams& params,
+                                                       const SemiRegularHierarchy& hierarchy,
+                                                       int j, const std::vector<Vec3>& local,
+                                                       std::vector<Vec3>* reconstructed) {
+  if (local.size() != hierarchy.NumOddVertices(j)) {
+    return InternalError("level " + std::to_string(j) + " coefficient count mismatch");
+  }
+  switch (params.coder) {
+    case bitstream::CoderId::kUniform:
+      return EncodeUniform(params, local, reconstructed);
+    case bitstream::CoderId::kEq:
+      return EncodeEq(params, hierarchy, j, local, reconstructed);
+    case bitstream::CoderId::kZerotree:
+      break;
+  }
+  return UnsupportedFeature("level coder not in this build");
+}
+
+}  // namespace eqmesh

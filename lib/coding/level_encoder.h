@@ -1,0 +1,19 @@
+// Encoder half of the per-level coefficient coders (see level_codec.h).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "coding/level_codec.h"
+
+namespace eqmesh {
+
+// Codes the local coefficients of refinement j -> j+1 and returns the chunk;
+// *reconstructed receives exactly what DecodeLevelCoefficients will return for it
+// (the closed loop continues from those values).
+StatusOr<std::vector<uint8_t>> EncodeLevelCoefficients(const LevelCodingParams& params,
+                                                       const SemiRegularHierarchy& hierarchy,
+                                                       int j, const std::vector<Vec3>& local,
+                                                       std::vector<Vec3>* reconstructed);
+
+}  // namespace eqmesh

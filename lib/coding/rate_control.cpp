@@ -1,0 +1,97 @@
+#include "coding/rate_control.h"
+
+#include <cmath>
+#include <optional>
+
+#include "coding/bitstream_shared.h"
+
+namespace eqmesh {
+namespace {
+
+constexpr int64_t kBracketStep = 64;  // one octave of lambda
+constexpr int kMaxEvaluations = 40;
+constexpr int64_t kQualityResolution = 4;  // codes: ~4 % of lambda
+
+// Evaluates codes, counting and clamping them to the header's range.
+class Prober {
+ public:
+  Prober(const RateEvaluator& eval, RateSearchReport* report) : eval_(eval), report_(report) {}
+  StatusOr<RatePoint> operator()(int64_t code) {
+    if (report_) ++report_->evaluations;
+    ++count_;
+    return eval_(code);
+  }
+  bool exhausted() const { return count_ >= kMaxEvaluations; }
+
+ private:
+  const RateEvaluator& eval_;
+  RateSearchReport* report_;
+  int count_ = 0;
+};
+
+bool InRange(int64_t code) { return code >= -bitstream::kMaxLogCode && code <= bitstream::kMaxLogCode; }
+
+// Finds lo < hi with pred(lo) false and pred(hi) true, by doubling steps from the
+// start; pred must be monotone (false ... true) in the code. Returns false if the
+// range ends first (the last point evaluated is then in *lo or *hi).
+template <typename Pred>
+StatusOr<bool> Bracket(Prober& probe, const Pred& pred, int64_t start, RatePoint* lo, RatePoint* hi) {
+  EQMESH_ASSIGN_OR_RETURN(RatePoint p, probe(start));
+  const bool up = !pred(p);
+  int64_t step = kBracketStep;
+  RatePoint prev = std::move(p);
+  while (!probe.exhausted()) {
+    const int64_t next = prev.lambda_code + (up ? step : -step);
+    if (!InRange(next)) break;
+    EQMESH_ASSIGN_OR_RETURN(RatePoint q, probe(next));
+    if (pred(q) == up) {
+      *lo = up ? std::move(prev) : std::move(q);
+      *hi = up ? std::move(q) : std::move(prev);
+      return true;
+    }
+    prev = std::move(q);
+    step *= 2;
+  }
+  *lo = prev;
+  *hi = std::move(prev);
+  return false;
+}
+
+}  // namespace
+
+StatusOr<RatePoint> SearchForRate(const RateEvaluator& eval, double target_bpv, int64_t start_code,
+                                  double rel_tolerance, RateSearchReport* report) {
+  Prober probe(eval, report);
+  std::optional<RatePoint> best;
+  auto consider = [&](const RatePoint& p) {
+    if (!best || std::abs(p.bpv - target_bpv) < std::abs(best->bpv - target_bpv)) best = p;
+    return std::abs(p.bpv - target_bpv) <= rel_tolerance * target_bpv;
+  };
+  auto reaches = [&](const RatePoint& p) { return p.bpv >= target_bpv; };
+  RatePoint lo, hi;
+  EQMESH_ASSIGN_OR_RETURN(bool bracketed, Bracket(probe, reaches, start_code, &lo, &hi));
+  if (consider(lo) || consider(hi) || !bracketed) return *best;
+  while (hi.lambda_code - lo.lambda_code > 1 && !probe.exhausted()) {
+    EQMESH_ASSIGN_OR_RETURN(RatePoint mid, probe(lo.lambda_code + (hi.lambda_code - lo.lambda_code) / 2));
+    if (consider(mid)) return mid;
+    (reaches(mid) ? hi : lo) = std::move(mid);
+  }
+  return *best;
+}
+
+StatusOr<RatePoint> SearchForQuality(const RateEvaluator& eval, double target_psnr,
+                                     int64_t start_code, RateSearchReport* report) {
+  Prober probe(eval, report);
+  auto meets = [&](const RatePoint& p) { return p.psnr_db >= target_psnr; };
+  RatePoint lo, hi;
+  EQMESH_ASSIGN_OR_RETURN(bool bracketed, Bracket(probe, meets, start_code, &lo, &hi));
+  if (!bracketed) return hi;
+  while (hi.lambda_code - lo.lambda_code > kQualityResolution && !probe.exhausted()) {
+    EQMESH_ASSIGN_OR_RETURN(RatePoint mid, probe(lo.lambda_code + (hi.lambda_code - lo.lambda_code) / 2));
+    (meets(mid) ? hi : lo) = std::move(mid);
+  }
+  // Non-monotone corners: hi always meets the target; a smaller lo never returned.
+  return hi;
+}
+
+}  // namespace eqmesh

@@ -1,0 +1,69 @@
+// The container half of the converter: replaces the geometry of a model's triangle
+// primitives by EXT_normal_mesh_compression streams. The compression itself is a
+// function argument (GeometryCompressor), so this file knows glTF, not the codec:
+// gltf_converter.h plugs in the remesher and encoder, tests plug in stand-ins.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <tiny_gltf.h>
+
+#include "core/status.h"
+#include "mesh/mesh.h"
+
+namespace eqmesh::gltf {
+
+struct CompressedGeometry {
+  std::vector<uint8_t> stream;
+  std::vector<uint64_t> chunk_lengths;  // levels + 1: header+base+kept, then each level
+  Mesh decoded;                         // full-resolution decoded mesh (placeholders, fallback)
+  double psnr_db = 0;                   // decoded vs. input, when measured (else 0)
+};
+
+// Compresses one primitive's local-space mesh; `label` ("mesh 0 primitive 1") is
+// for progress and errors. An error leaves that primitive unchanged.
+using GeometryCompressor = std::function<StatusOr<CompressedGeometry>(const Mesh& mesh, const std::string& label)>;
+
+struct ContainerOptions {
+  // Write the decoded geometry as real accessors and list the extension in
+  // extensionsUsed only, so loaders without it still open the file (spec rule 12).
+  bool fallback = false;
+  // Compress primitives with attributes other than POSITION / NORMAL (TEXCOORD_0,
+  // COLOR_0, ...) by dropping those attributes; false leaves such primitives as
+  // they are (remeshing cannot carry per-vertex data).
+  bool drop_other_attributes = false;
+};
+
+struct PrimitiveOutcome {
+  int mesh = 0;
+  int primitive = 0;
+  bool compressed = false;
+  std::string reason;  // why it was left unchanged (empty when compressed)
+  size_t input_vertices = 0, input_triangles = 0;
+  size_t output_vertices = 0, output_triangles = 0;
+  size_t stream_bytes = 0;
+  int levels = 0;
+  double psnr_db = 0;
+};
+
+struct ConvertReport {
+  std::vector<PrimitiveOutcome> primitives;  // every primitive, in mesh order
+  size_t compressed = 0;
+  size_t unchanged = 0;
+  uint64_t input_bytes = 0;   // input file size (0 for an in-memory model)
+  uint64_t output_bytes = 0;  // GLB written
+  std::vector<std::string> notes;
+};
+
+// Compresses every primitive that qualifies, leaves the others (listed in the
+// report with the reason), drops the data only the replaced primitives used, and
+// updates extensionsUsed / extensionsRequired. Fails only when the model itself is
+// broken; per-primitive failures are outcomes, not errors.
+Status CompressPrimitives(tinygltf::Model* model, const GeometryCompressor& compressor,
+                          const ContainerOptions& options, ConvertReport* report);
+
+}  // namespace eqmesh::gltf

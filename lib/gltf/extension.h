@@ -1,0 +1,57 @@
+// The EXT_normal_mesh_compression object of a mesh.primitive (ext_spec/README.md,
+// "glTF Schema Updates"): parsing with the spec's validity rules, and writing.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <tiny_gltf.h>
+
+#include "core/status.h"
+
+namespace eqmesh::gltf {
+
+inline constexpr char kExtensionName[] = "EXT_normal_mesh_compression";
+// Stream levels the spec allows (validity rule 9; bitstream kMaxLevels).
+inline constexpr int kMaxExtensionLevels = 12;
+
+struct ByteRange {
+  uint64_t offset = 0;
+  uint64_t length = 0;
+  uint64_t end() const { return offset + length; }
+  bool operator==(const ByteRange& o) const { return offset == o.offset && length == o.length; }
+};
+
+struct NormalMeshExtension {
+  int buffer_view = -1;
+  int levels = 0;                        // J
+  std::vector<ByteRange> level_ranges;   // J + 1 entries, inside the buffer view
+  int position_accessor = -1;
+  int normal_accessor = -1;              // -1 when the primitive has no NORMAL
+};
+
+// Reads the extension object. Checks the JSON shape and the rules that need nothing
+// but the object itself (9, and 10 except the end-of-buffer-view check).
+StatusOr<NormalMeshExtension> ParseExtension(const tinygltf::Value& value);
+
+// The extension object as tinygltf stores it.
+tinygltf::Value ExtensionToValue(const NormalMeshExtension& ext);
+
+// Rules 2-8 and the buffer-view half of 10 against the model holding `primitive`.
+// `fallback` says whether placeholder accessors may have data (rule 12).
+Status CheckExtensionAgainstModel(const NormalMeshExtension& ext, const tinygltf::Primitive& primitive,
+                                  const tinygltf::Model& model, bool fallback);
+
+// Contiguous ranges starting at 0 from chunk lengths (level 0 first): rule 10's form.
+std::vector<ByteRange> RangesFromLengths(const std::vector<uint64_t>& lengths);
+
+// True when the model lists the extension in extensionsRequired.
+bool IsExtensionRequired(const tinygltf::Model& model);
+
+// Adds / removes `name` from a list of extension names, keeping the order of the rest.
+void AddExtensionName(std::vector<std::string>* names, const std::string& name);
+void RemoveExtensionName(std::vector<std::string>* names, const std::string& name);
+
+}  // namespace eqmesh::gltf

@@ -1,0 +1,98 @@
+// FlattenToMesh (gltf_loader.h): scene graph -> one world-space triangle mesh.
+#include <Eigen/Geometry>
+
+#include "gltf/accessor_io.h"
+#include "gltf/gltf_loader.h"
+
+namespace eqmesh::gltf {
+namespace {
+
+using Transform = Eigen::Affine3d;
+
+Transform LocalTransform(const tinygltf::Node& node) {
+  Transform t = Transform::Identity();
+  if (node.matrix.size() == 16) {
+    Eigen::Matrix4d m;
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r) m(r, c) = node.matrix[static_cast<size_t>(c * 4 + r)];  // column major
+    t.matrix() = m;
+    return t;
+  }
+  if (node.translation.size() == 3) t.translate(Vec3(node.translation[0], node.translation[1], node.translation[2]));
+  if (node.rotation.size() == 4) {
+    t.rotate(Eigen::Quaterniond(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]).normalized());
+  }
+  if (node.scale.size() == 3) t.scale(Vec3(node.scale[0], node.scale[1], node.scale[2]));
+  return t;
+}
+
+class SceneFlattener {
+ public:
+  explicit SceneFlattener(const tinygltf::Model& model) : model_(model) {}
+
+  // glTF node graphs are trees, but a hostile file may contain cycles: the depth
+  // bound (one level per node) stops them.
+  Status Visit(int node_index, const Transform& parent, size_t depth) {
+    if (node_index < 0 || static_cast<size_t>(node_index) >= model_.nodes.size()) {
+      return ParseError("node " + std::to_string(node_index) + " does not exist");
+    }
+    if (depth > model_.nodes.size()) return ParseError("the node hierarchy has a cycle");
+    const tinygltf::Node& node = model_.nodes[static_cast<size_t>(node_index)];
+    const Transform world = parent * LocalTransform(node);
+    if (node.mesh >= 0) EQMESH_RETURN_IF_ERROR(AppendMesh(node.mesh, world));
+    for (int child : node.children) EQMESH_RETURN_IF_ERROR(Visit(child, world, depth + 1));
+    return Status::Ok();
+  }
+
+  Mesh Take() { return std::move(out_); }
+
+ private:
+  Status AppendMesh(int mesh_index, const Transform& world) {
+    if (static_cast<size_t>(mesh_index) >= model_.meshes.size()) {
+      return ParseError("mesh " + std::to_string(mesh_index) + " does not exist");
+    }
+    const auto& primitives = model_.meshes[static_cast<size_t>(mesh_index)].primitives;
+    for (size_t p = 0; p < primitives.size(); ++p) {
+      const int mode = primitives[p].mode;
+      if (mode != -1 && mode != TINYGLTF_MODE_TRIANGLES) continue;
+      auto part = ReadTrianglePrimitive(model_, primitives[p]);
+      if (!part.ok()) {
+        return part.status().WithContext("mesh " + std::to_string(mesh_index) + " primitive " + std::to_string(p));
+      }
+      const uint32_t offset = static_cast<uint32_t>(out_.positions.size());
+      for (const Vec3& v : part->positions) out_.positions.push_back(world * v);
+      for (const Face& f : part->faces) out_.faces.push_back({f[0] + offset, f[1] + offset, f[2] + offset});
+    }
+    return Status::Ok();
+  }
+
+  const tinygltf::Model& model_;
+  Mesh out_;
+};
+
+std::vector<int> RootNodes(const tinygltf::Model& model) {
+  if (!model.scenes.empty()) {
+    const size_t scene = model.defaultScene >= 0 ? static_cast<size_t>(model.defaultScene) : 0;
+    if (scene < model.scenes.size()) return model.scenes[scene].nodes;
+  }
+  std::vector<bool> is_child(model.nodes.size(), false);
+  for (const tinygltf::Node& n : model.nodes)
+    for (int c : n.children)
+      if (c >= 0 && static_cast<size_t>(c) < is_child.size()) is_child[static_cast<size_t>(c)] = true;
+  std::vector<int> roots;
+  for (size_t i = 0; i < is_child.size(); ++i)
+    if (!is_child[i]) roots.push_back(static_cast<int>(i));
+  return roots;
+}
+
+}  // namespace
+
+StatusOr<Mesh> FlattenToMesh(const tinygltf::Model& model) {
+  SceneFlattener flattener(model);
+  for (int root : RootNodes(model)) EQMESH_RETURN_IF_ERROR(flattener.Visit(root, Transform::Identity(), 0));
+  Mesh mesh = flattener.Take();
+  if (mesh.faces.empty()) return InvalidMesh("the scene has no triangles");
+  return mesh;
+}
+
+}  // namespace eqmesh::gltf

@@ -1,0 +1,45 @@
+// Converter to EXT_normal_mesh_compression: glTF / GLB / OBJ / PLY / OFF in,
+// compressed GLB out. Each TRIANGLES primitive that qualifies is remeshed (in its
+// mesh's local space) and encoded; every other primitive, and everything that is
+// not primitive geometry (nodes, materials, textures, animations, cameras, skins,
+// extras, other extensions), is written unchanged. A mesh file (OBJ/PLY/OFF) becomes
+// a one-mesh, one-node scene.
+#pragma once
+
+#include <string>
+
+#include <tiny_gltf.h>
+
+#include "coding/encoder.h"
+#include "core/status.h"
+#include "gltf/compress_primitives.h"
+#include "remesh/remesh.h"
+
+namespace eqmesh::gltf {
+
+struct ConvertOptions {
+  // Codec settings. input_vertices and original are filled per primitive.
+  EncodeOptions codec;
+  RemeshOptions remesh;
+  // See ContainerOptions.
+  bool fallback = false;
+  bool drop_other_attributes = false;
+};
+
+// The remesher + encoder as a GeometryCompressor (also measures the decoded PSNR
+// when options.codec.measure_psnr or target_psnr asks for it).
+GeometryCompressor MakeEqmeshCompressor(const ConvertOptions& options);
+
+// Compresses `model` in place (no file written).
+StatusOr<ConvertReport> ConvertModel(tinygltf::Model* model, const ConvertOptions& options);
+
+// Reads `input_path` (.gltf/.glb by content or name, else any mesh format ReadMesh
+// accepts) and writes the compressed GLB to `output_path`.
+StatusOr<ConvertReport> ConvertToCompressedGltf(const std::string& input_path, const std::string& output_path,
+                                                const ConvertOptions& options);
+
+// Same from a model in memory.
+StatusOr<ConvertReport> ConvertToCompressedGltf(tinygltf::Model model, const std::string& output_path,
+                                                const ConvertOptions& options);
+
+}  // namespace eqmesh::gltf

@@ -1,0 +1,73 @@
+// Loader for EXT_normal_mesh_compression: reads a .gltf / .glb, decodes every
+// compressed primitive and returns a plain glTF 2.0 model any engine can consume.
+//
+// For each primitive carrying the extension the loader checks the spec's validity
+// rules, decodes the stream (only the bytes up to the requested level), writes
+// float32 POSITION, unit NORMAL (area-weighted, ext_spec "Reconstruction of
+// normals") and indices into new buffer views, repoints the primitive's accessors,
+// and removes the extension. Stream bytes and fallback data are dropped, and the
+// extension leaves extensionsUsed / extensionsRequired. Everything else (nodes,
+// materials, images, animations, other extensions, extras) is kept.
+//
+// Safe for untrusted files: any problem is a Status naming the file and the
+// primitive ("scan.glb: mesh 2 primitive 0: corrupt stream: ..."), never a crash
+// and never a silently skipped primitive.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <tiny_gltf.h>
+
+#include "core/status.h"
+#include "gltf/stream_decoder.h"
+#include "mesh/mesh.h"
+
+namespace eqmesh::gltf {
+
+struct LoadOptions {
+  // Finest level to decode: -1 = every level of each stream; K >= 0 decodes
+  // min(K, levels) and reads only the bytes that level needs.
+  int max_level = -1;
+  // Stream decoder; empty = the eqmesh codec. Tests substitute a stand-in.
+  StreamDecoderFn decoder;
+};
+
+struct PrimitiveLoad {
+  int mesh = 0;
+  int primitive = 0;
+  int levels_in_stream = 0;
+  int level_decoded = 0;
+  uint64_t stream_bytes_read = 0;
+  size_t vertices = 0;
+  size_t triangles = 0;
+};
+
+struct LoadReport {
+  std::vector<PrimitiveLoad> decoded;  // one per compressed primitive, in mesh order
+};
+
+StatusOr<tinygltf::Model> LoadGltf(const std::string& path, const LoadOptions& options = {},
+                                   LoadReport* report = nullptr);
+
+// Same on bytes in memory; `name_for_errors` prefixes messages.
+StatusOr<tinygltf::Model> LoadGltfFromBytes(const std::vector<uint8_t>& bytes,
+                                            const std::string& name_for_errors,
+                                            const LoadOptions& options = {},
+                                            LoadReport* report = nullptr);
+
+// The decoding step alone, on a model already read (for example by an engine's own
+// tinygltf call with an image loader of its choice).
+Status DecodeCompressedPrimitives(tinygltf::Model* model, const LoadOptions& options = {},
+                                  LoadReport* report = nullptr);
+
+// Writes a (decoded) model as a self-contained .glb.
+Status WriteDecodedGlb(const tinygltf::Model& model, const std::string& path);
+
+// All TRIANGLES primitives of the model's default scene (every root node when no
+// scene is given) in world space, node transforms applied, as one Mesh for OBJ / PLY
+// output. Compressed primitives must have been decoded first.
+StatusOr<Mesh> FlattenToMesh(const tinygltf::Model& model);
+
+}  // namespace eqmesh::gltf

@@ -1,0 +1,37 @@
+// The loader's view of a compressed stream: bytes in, mesh and chunk layout out.
+// The loader takes the decoder as a function so the glTF container logic can be
+// tested with a stand-in stream; the default is the eqmesh codec (lib/coding).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "core/status.h"
+#include "mesh/mesh.h"
+
+namespace eqmesh::gltf {
+
+struct DecodedStream {
+  Mesh mesh;                           // the decoded level, kept components appended
+  int stream_levels = 0;               // J as the stream header states it
+  int level_decoded = 0;               // K
+  std::vector<uint64_t> chunk_lengths; // J + 1: header+base+kept, then each level chunk
+};
+
+// Decodes `size` bytes (the stream, or a prefix reaching the end of level
+// `max_level`'s chunk) up to `max_level` (-1: all levels).
+using StreamDecoderFn =
+    std::function<StatusOr<DecodedStream>(const uint8_t* data, size_t size, int max_level)>;
+
+// Chunk lengths of the stream whose header starts `data` (`size` may be a prefix):
+// what levelByteRanges must restate.
+using StreamLayoutFn = std::function<StatusOr<std::vector<uint64_t>>(const uint8_t* data, size_t size)>;
+
+// The eqmesh codec, or a decoder that fails with kUnsupportedFeature when this build
+// has no eqmesh_decoder.
+StreamDecoderFn EqmeshStreamDecoder();
+StreamLayoutFn EqmeshStreamLayout();
+
+}  // namespace eqmesh::gltf

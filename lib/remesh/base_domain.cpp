@@ -1,0 +1,527 @@
+// MAPS base domain by half-edge collapses (Lee et al. 1998; Garland & Heckbert
+// 1997 for the priority). See base_domain.h for the departures from MAPS.
+#include "remesh/base_domain.h"
+
+#include <algorithm>
+#include <cmath>
+#include <queue>
+
+#include <Eigen/Core>
+
+#include "mesh/mesh_topology.h"
+#include "remesh/ring_flattening.h"
+
+namespace eqmesh {
+namespace {
+
+constexpr uint32_t kNone = 0xffffffffu;
+constexpr size_t kMaxValence = 12;
+// Weight of the size term against the quadric error: makes flat regions
+// decimate evenly instead of in arbitrary order (MAPS's area weight).
+constexpr double kSizeWeight = 0.02;
+// A collapse may not turn a face by more than ~80 degrees (no normal flips).
+constexpr double kMinNormalCos = 0.17;
+// Minimum 3D triangle quality 4*sqrt(3)*A / sum(l^2) a collapse may create,
+// unless the star already holds a worse triangle.
+constexpr double kMinQuality = 0.08;
+
+struct Ring {
+  std::vector<uint32_t> verts;  // k_0..k_{d-1}, counter-clockwise around v
+  std::vector<uint32_t> faces;  // faces[m] = (v, k_m, k_{m+1}) up to rotation
+  bool closed = false;
+};
+
+struct QueueEntry {
+  double cost;
+  uint32_t vertex;
+  uint32_t stamp;
+  bool operator<(const QueueEntry& o) const { return cost > o.cost; }  // min-heap
+};
+
+double Quality(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const double denom = (b - a).squaredNorm() + (c - b).squaredNorm() + (a - c).squaredNorm();
+  if (!(denom > 0.0)) return 0.0;
+  return 2.0 * std::sqrt(3.0) * (b - a).cross(c - a).norm() / denom;
+}
+
+class Simplifier {
+ public:
+  Simplifier(const Mesh& mesh, const std::vector<uint8_t>& is_boundary);
+  void Run(size_t target, const ProgressFn& progress);
+  BaseDomain Extract() const;
+
+ private:
+  void InitQuadrics();
+  void InitLoops();
+  bool BuildRing(uint32_t v, Ring* ring) const;
+  std::vector<uint32_t> Neighbours(uint32_t v) const;
+  std::vector<std::pair<double, uint32_t>> Candidates(uint32_t v, const Ring& ring) const;
+  void Enqueue(uint32_t v);
+  bool TryCollapse(uint32_t v, uint32_t u, const Ring& ring);
+  bool TopologyAllows(uint32_t v, size_t p, const Ring& ring) const;
+  bool GeometryAllows(uint32_t v, size_t p, const Ring& ring, const std::vector<Vec2>& z) const;
+  void Apply(uint32_t v, size_t p, const Ring& ring, const std::vector<Vec2>& z);
+  Vec2 ChartOf(uint32_t corner, uint32_t v, const Ring& ring, const std::vector<Vec2>& z) const;
+  bool PlaceBoundaryItem(uint32_t x, const Face& old_face, const Vec2& q, uint32_t v, const Ring& ring,
+                         const std::vector<Vec2>& z, const std::vector<uint32_t>& new_faces);
+  void PlaceInteriorItem(uint32_t x, const Vec2& q, uint32_t v, const Ring& ring, const std::vector<Vec2>& z,
+                         const std::vector<uint32_t>& new_faces);
+
+  const std::vector<Vec3>& pos_;
+  const std::vector<uint8_t>& boundary_;
+  std::vector<Face> faces_;
+  std::vector<uint8_t> face_alive_;
+  std::vector<std::vector<uint32_t>> vfaces_;
+  std::vector<uint8_t> alive_;
+  std::vector<uint32_t> stamp_;
+  std::vector<uint32_t> loop_of_;
+  std::vector<size_t> loop_size_;
+  std::vector<Eigen::Matrix4d> quadric_;
+  std::vector<std::vector<uint32_t>> bucket_;  // removed input vertices mapped into each face
+  std::vector<ParamPoint> params_;
+  std::priority_queue<QueueEntry> queue_;
+  size_t alive_count_ = 0;
+};
+
+Simplifier::Simplifier(const Mesh& mesh, const std::vector<uint8_t>& is_boundary)
+    : pos_(mesh.positions), boundary_(is_boundary), faces_(mesh.faces) {
+  const size_t n = pos_.size();
+  face_alive_.assign(faces_.size(), 1);
+  vfaces_.resize(n);
+  for (uint32_t f = 0; f < faces_.size(); ++f) {
+    for (uint32_t c : faces_[f]) vfaces_[c].push_back(f);
+  }
+  alive_.assign(n, 1);
+  alive_count_ = n;
+  stamp_.assign(n, 0);
+  bucket_.resize(faces_.size());
+  params_.resize(n);
+  InitQuadrics();
+  InitLoops();
+}
+
+void Simplifier::InitQuadrics() {
+  quadric_.assign(pos_.size(), Eigen::Matrix4d::Zero());
+  for (const Face& f : faces_) {
+    const Vec3& a = pos_[f[0]];
+    const Vec3 n2 = (pos_[f[1]] - a).cross(pos_[f[2]] - a);
+    const double len = n2.norm();
+    if (!(len > 0.0)) continue;
+    const Vec3 n = n2 / len;
+    const Eigen::Vector4d plane(n.x(), n.y(), n.z(), -n.dot(a));
+    const Eigen::Matrix4d q = (0.5 * len) * plane * plane.transpose();
+    for (uint32_t c : f) quadric_[c] += q;
+    // Boundary edges get a perpendicular plane so the holes keep their shape.
+    for (int i = 0; i < 3; ++i) {
+      const uint32_t s = f[i], t = f[(i + 1) % 3];
+      if (!boundary_[s] || !boundary_[t]) continue;
+      const Vec3 e = pos_[t] - pos_[s];
+      const Vec3 m = e.cross(n);
+      const double ml = m.norm();
+      if (!(ml > 0.0)) continue;
+      const Vec3 mn = m / ml;
+      const Eigen::Vector4d bplane(mn.x(), mn.y(), mn.z(), -mn.dot(pos_[s]));
+      const Eigen::Matrix4d bq = e.squaredNorm() * bplane * bplane.transpose();
+      quadric_[s] += bq;
+      quadric_[t] += bq;
+    }
+  }
+}
+
+void Simplifier::InitLoops() {
+  loop_of_.assign(pos_.size(), kNone);
+  Mesh m;
+  m.positions = pos_;
+  m.faces = faces_;
+  const MeshTopology topo(m);
+  for (const BoundaryLoop& loop : topo.BoundaryLoops()) {
+    for (uint32_t v : loop.vertices) loop_of_[v] = static_cast<uint32_t>(loop_size_.size());
+    loop_size_.push_back(loop.vertices.size());
+  }
+}
+
+bool Simplifier::BuildRing(uint32_t v, Ring* ring) const {
+  const std::vector<uint32_t>& fs = vfaces_[v];
+  const size_t nf = fs.size();
+  if (nf == 0) return false;
+  std::vector<uint32_t> from(nf), to(nf);
+  for (size_t i = 0; i < nf; ++i) {
+    const Face& f = faces_[fs[i]];
+    const int c = f[0] == v ? 0 : (f[1] == v ? 1 : 2);
+    from[i] = f[(c + 1) % 3];
+    to[i] = f[(c + 2) % 3];
+  }
+  // Start at a wedge whose first vertex ends no other wedge (boundary), else anywhere.
+  size_t start = 0;
+  for (size_t i = 0; i < nf; ++i) {
+    if (std::find(to.begin(), to.end(), from[i]) == to.end()) {
+      start = i;
+      break;
+    }
+  }
+  ring->verts.clear();
+  ring->faces.clear();
+  size_t cur = start;
+  for (size_t step = 0; step < nf; ++step) {
+    ring->verts.push_back(from[cur]);
+    ring->faces.push_back(fs[cur]);
+    const uint32_t next_vertex = to[cur];
+    if (step + 1 == nf) {
+      ring->closed = next_vertex == ring->verts.front();
+      if (!ring->closed) ring->verts.push_back(next_vertex);
+      break;
+    }
+    const auto it = std::find(from.begin(), from.end(), next_vertex);
+    if (it == from.end()) return false;  // fan broken: not a single manifold fan
+    cur = static_cast<size_t>(it - from.begin());
+  }
+  return ring->closed == !boundary_[v];
+}
+
+std::vector<uint32_t> Simplifier::Neighbours(uint32_t v) const {
+  std::vector<uint32_t> n;
+  for (uint32_t f : vfaces_[v]) {
+    for (uint32_t c : faces_[f]) {
+      if (c != v) n.push_back(c);
+    }
+  }
+  std::sort(n.begin(), n.end());
+  n.erase(std::unique(n.begin(), n.end()), n.end());
+  return n;
+}
+
+std::vector<std::pair<double, uint32_t>> Simplifier::Candidates(uint32_t v, const Ring& ring) const {
+  double star_area = 0.0;
+  for (uint32_t f : ring.faces) {
+    const Face& t = faces_[f];
+    star_area += 0.5 * (pos_[t[1]] - pos_[t[0]]).cross(pos_[t[2]] - pos_[t[0]]).norm();
+  }
+  std::vector<uint32_t> targets;
+  if (boundary_[v]) {
+    targets = {ring.verts.front(), ring.verts.back()};
+  } else {
+    targets = ring.verts;
+  }
+  std::vector<std::pair<double, uint32_t>> out;
+  for (uint32_t u : targets) {
+    const Eigen::Matrix4d q = quadric_[v] + quadric_[u];
+    const Eigen::Vector4d h(pos_[u].x(), pos_[u].y(), pos_[u].z(), 1.0);
+    const double error = std::max(0.0, h.dot(q * h));
+    const double size = kSizeWeight * (pos_[u] - pos_[v]).squaredNorm() * star_area;
+    out.push_back({error + size, u});
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+void Simplifier::Enqueue(uint32_t v) {
+  ++stamp_[v];
+  Ring ring;
+  if (!alive_[v] || !BuildRing(v, &ring)) return;
+  const auto cands = Candidates(v, ring);
+  if (cands.empty()) return;
+  queue_.push({cands.front().first, v, stamp_[v]});
+}
+
+bool Simplifier::TopologyAllows(uint32_t v, size_t p, const Ring& ring) const {
+  const size_t d = ring.verts.size();
+  const uint32_t u = ring.verts[p];
+  if (boundary_[v]) {
+    if (ring.closed || (p != 0 && p + 1 != d) || d < 3) return false;
+    if (loop_of_[v] == kNone || loop_size_[loop_of_[v]] < 4) return false;
+  } else if (!ring.closed || d < 3) {
+    return false;
+  }
+  // Link condition: u and v share exactly the apexes of the faces on edge (u, v).
+  std::vector<uint32_t> opposite;
+  if (ring.closed) {
+    opposite = {ring.verts[(p + d - 1) % d], ring.verts[(p + 1) % d]};
+  } else {
+    opposite = {ring.verts[p == 0 ? 1 : d - 2]};
+  }
+  const std::vector<uint32_t> nu = Neighbours(u);
+  size_t common = 0;
+  for (uint32_t k : ring.verts) {
+    if (k != u && std::binary_search(nu.begin(), nu.end(), k)) ++common;
+  }
+  if (common != opposite.size()) return false;
+  // Apexes lose a neighbour: interior ones must keep 3, boundary ones 2.
+  for (uint32_t w : opposite) {
+    const size_t neighbours = vfaces_[w].size() + (boundary_[w] ? 1 : 0);
+    if (neighbours - 1 < (boundary_[w] ? 2u : 3u)) return false;
+  }
+  const size_t new_valence = (nu.size() - 1) + (d - 1) - common;
+  return new_valence <= kMaxValence + (boundary_[u] ? 1 : 0);
+}
+
+bool Simplifier::GeometryAllows(uint32_t v, size_t p, const Ring& ring, const std::vector<Vec2>& z) const {
+  const size_t d = ring.verts.size();
+  const uint32_t u = ring.verts[p];
+  const size_t wedges = ring.closed ? d : d - 1;
+  double worst_old = 1.0;
+  for (size_t m = 0; m < wedges; ++m) {
+    const Vec3& a = pos_[ring.verts[m]];
+    const Vec3& b = pos_[ring.verts[(m + 1) % d]];
+    worst_old = std::min(worst_old, Quality(pos_[v], a, b));
+  }
+  for (size_t m = 0; m < wedges; ++m) {
+    const size_t m1 = (m + 1) % d;
+    if (ring.verts[m] == u || ring.verts[m1] == u) continue;
+    if (!(Orient2d(z[p], z[m], z[m1]) > 1e-12)) return false;
+    const Vec3& a = pos_[ring.verts[m]];
+    const Vec3& b = pos_[ring.verts[m1]];
+    const Vec3 n_old = (a - pos_[v]).cross(b - pos_[v]);
+    const Vec3 n_new = (a - pos_[u]).cross(b - pos_[u]);
+    const double ln = n_new.norm(), lo = n_old.norm();
+    if (!(ln > 0.0)) return false;
+    if (lo > 0.0 && n_old.dot(n_new) < kMinNormalCos * lo * ln) return false;
+    const double q = Quality(pos_[u], a, b);
+    if (q < kMinQuality && q < worst_old) return false;
+  }
+  return true;
+}
+
+bool Simplifier::TryCollapse(uint32_t v, uint32_t u, const Ring& ring) {
+  const auto it = std::find(ring.verts.begin(), ring.verts.end(), u);
+  if (it == ring.verts.end()) return false;
+  const size_t p = static_cast<size_t>(it - ring.verts.begin());
+  if (!TopologyAllows(v, p, ring)) return false;
+  std::vector<Vec3> ring_pos;
+  for (uint32_t k : ring.verts) ring_pos.push_back(pos_[k]);
+  std::vector<Vec2> z;
+  if (!FlattenRing(pos_[v], ring_pos, ring.closed, &z)) return false;
+  if (!GeometryAllows(v, p, ring, z)) return false;
+  Apply(v, p, ring, z);
+  return true;
+}
+
+Vec2 Simplifier::ChartOf(uint32_t corner, uint32_t v, const Ring& ring, const std::vector<Vec2>& z) const {
+  if (corner == v) return Vec2::Zero();
+  for (size_t m = 0; m < ring.verts.size(); ++m) {
+    if (ring.verts[m] == corner) return z[m];
+  }
+  return Vec2::Zero();  // unreachable for faces of the star
+}
+
+// Input boundary vertices stay exactly on a boundary edge: find the edge they lie
+// on after the collapse and write exact barycentrics (one coordinate zero).
+bool Simplifier::PlaceBoundaryItem(uint32_t x, const Face& of, const Vec2& q, uint32_t v, const Ring& ring,
+                                   const std::vector<Vec2>& z, const std::vector<uint32_t>& new_faces) {
+  const ParamPoint old = params_[x];
+  int zero = 0;
+  for (int i = 1; i < 3; ++i) {
+    if (old.bary[i] < old.bary[zero]) zero = i;
+  }
+  uint32_t w1 = of[(zero + 1) % 3], w2 = of[(zero + 2) % 3];
+  double s = old.bary[(zero + 2) % 3] / std::max(1e-300, old.bary[(zero + 1) % 3] + old.bary[(zero + 2) % 3]);
+  if (w1 == v || w2 == v) {
+    if (ring.closed) return false;
+    const size_t d = ring.verts.size();
+    w1 = ring.verts[0];
+    w2 = ring.verts[d - 1];
+    const double span = z[d - 1].x() - z[0].x();
+    if (!(std::abs(span) > 0.0)) return false;
+    s = std::clamp((q.x() - z[0].x()) / span, 0.0, 1.0);
+  }
+  for (uint32_t f : new_faces) {
+    const Face& nf = faces_[f];  // post-collapse corners
+    for (int i = 0; i < 3; ++i) {
+      if (nf[i] == w1 && nf[(i + 1) % 3] == w2) {
+        ParamPoint pp{f, {0, 0, 0}};
+        pp.bary[i] = 1.0 - s;
+        pp.bary[(i + 1) % 3] = s;
+        params_[x] = pp;
+        return true;
+      }
+      if (nf[i] == w2 && nf[(i + 1) % 3] == w1) {
+        ParamPoint pp{f, {0, 0, 0}};
+        pp.bary[i] = s;
+        pp.bary[(i + 1) % 3] = 1.0 - s;
+        params_[x] = pp;
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+void Simplifier::PlaceInteriorItem(uint32_t x, const Vec2& q, uint32_t v, const Ring& ring,
+                                   const std::vector<Vec2>& z, const std::vector<uint32_t>& new_faces) {
+  double best = -1e300;
+  ParamPoint best_pp;
+  for (uint32_t f : new_faces) {
+    const Face& nf = faces_[f];
+    Eigen::Vector3d b;
+    if (!Barycentric2d(q, ChartOf(nf[0], v, ring, z), ChartOf(nf[1], v, ring, z), ChartOf(nf[2], v, ring, z), &b)) {
+      continue;
+    }
+    const double worst = b.minCoeff();
+    if (worst > best) {
+      best = worst;
+      best_pp.face = f;
+      best_pp.bary = {b[0], b[1], b[2]};
+    }
+  }
+  // Round-off can leave a point a hair outside every triangle: clamp to the closest.
+  double sum = 0.0;
+  for (double& w : best_pp.bary) {
+    w = std::max(0.0, w);
+    sum += w;
+  }
+  for (double& w : best_pp.bary) w = sum > 0.0 ? w / sum : 1.0 / 3.0;
+  params_[x] = best_pp;
+}
+
+void Simplifier::Apply(uint32_t v, size_t p, const Ring& ring, const std::vector<Vec2>& z) {  // NOLINT
+  const uint32_t u = ring.verts[p];
+  // Chart positions of everything mapped into the star, before touching faces.
+  std::vector<uint32_t> items;
+  std::vector<Vec2> chart;
+  for (uint32_t f : ring.faces) {
+    for (uint32_t x : bucket_[f]) {
+      const Face& t = faces_[f];
+      Vec2 q = Vec2::Zero();
+      for (int i = 0; i < 3; ++i) q += params_[x].bary[i] * ChartOf(t[i], v, ring, z);
+      items.push_back(x);
+      chart.push_back(q);
+    }
+    bucket_[f].clear();
+  }
+  items.push_back(v);
+  chart.push_back(Vec2::Zero());
+  // Boundary items need their pre-collapse face; remember those.
+  std::vector<ParamPoint> old_params;
+  for (uint32_t x : items) old_params.push_back(params_[x]);
+
+  // Retriangulate: faces with u die, the others get u in place of v.
+  std::vector<uint32_t> new_faces;
+  std::vector<Face> old_corners;
+  for (uint32_t f : ring.faces) old_corners.push_back(faces_[f]);
+  for (uint32_t f : ring.faces) {
+    Face& t = faces_[f];
+    if (t[0] == u || t[1] == u || t[2] == u) {
+      face_alive_[f] = 0;
+      for (uint32_t c : t) {
+        if (c == v) continue;
+        auto& list = vfaces_[c];
+        list.erase(std::remove(list.begin(), list.end(), f), list.end());
+      }
+    } else {
+      for (uint32_t& c : t) {
+        if (c == v) c = u;
+      }
+      vfaces_[u].push_back(f);
+      new_faces.push_back(f);
+    }
+  }
+  vfaces_[v].clear();
+  alive_[v] = 0;
+  --alive_count_;
+  quadric_[u] += quadric_[v];
+  if (boundary_[v]) --loop_size_[loop_of_[v]];
+
+  for (size_t i = 0; i < items.size(); ++i) {
+    const uint32_t x = items[i];
+    bool placed = false;
+    if (boundary_[x] && x != v) {
+      const size_t k = static_cast<size_t>(std::find(ring.faces.begin(), ring.faces.end(), old_params[i].face) -
+                                           ring.faces.begin());
+      placed = PlaceBoundaryItem(x, old_corners[k], chart[i], v, ring, z, new_faces);
+    } else if (x == v && boundary_[v]) {
+      // v itself sits on the chord between its two boundary neighbours.
+      const size_t d = ring.verts.size();
+      const double span = z[d - 1].x() - z[0].x();
+      const double s = std::abs(span) > 0.0 ? std::clamp(-z[0].x() / span, 0.0, 1.0) : 0.5;
+      for (uint32_t f : new_faces) {
+        const Face& nf = faces_[f];
+        for (int c = 0; c < 3 && !placed; ++c) {
+          if (nf[c] == ring.verts[0] && nf[(c + 1) % 3] == ring.verts[d - 1]) {
+            ParamPoint pp{f, {0, 0, 0}};
+            pp.bary[c] = 1.0 - s;
+            pp.bary[(c + 1) % 3] = s;
+            params_[x] = pp;
+            placed = true;
+          }
+        }
+        if (placed) break;
+      }
+    }
+    if (!placed) PlaceInteriorItem(x, chart[i], v, ring, z, new_faces);
+    bucket_[params_[x].face].push_back(x);
+  }
+}
+
+void Simplifier::Run(size_t target, const ProgressFn& progress) {
+  for (uint32_t v = 0; v < pos_.size(); ++v) Enqueue(v);
+  const size_t start = alive_count_;
+  size_t reported = 0;
+  Ring ring;
+  while (alive_count_ > target && !queue_.empty()) {
+    const QueueEntry e = queue_.top();
+    queue_.pop();
+    const uint32_t v = e.vertex;
+    if (!alive_[v] || e.stamp != stamp_[v] || !BuildRing(v, &ring)) continue;
+    bool done = false;
+    for (const auto& cand : Candidates(v, ring)) {
+      if (TryCollapse(v, cand.second, ring)) {
+        const uint32_t u = cand.second;
+        Enqueue(u);
+        for (uint32_t w : Neighbours(u)) Enqueue(w);
+        done = true;
+        break;
+      }
+    }
+    if (!done) ++stamp_[v];  // stuck until a collapse nearby changes its star
+    const size_t removed = start - alive_count_;
+    if (progress && removed >= reported + start / 100 + 1) {
+      reported = removed;
+      ReportProgress(progress, "base domain", static_cast<double>(removed) / static_cast<double>(start - std::min(start, target) + 1));
+    }
+  }
+}
+
+BaseDomain Simplifier::Extract() const {
+  BaseDomain out;
+  std::vector<uint32_t> vmap(pos_.size(), kNone);
+  for (uint32_t v = 0; v < pos_.size(); ++v) {
+    if (alive_[v] && !vfaces_[v].empty()) {
+      vmap[v] = static_cast<uint32_t>(out.base_to_input.size());
+      out.base_to_input.push_back(v);
+    }
+  }
+  std::vector<uint32_t> fmap(faces_.size(), kNone);
+  for (uint32_t f = 0; f < faces_.size(); ++f) {
+    if (!face_alive_[f]) continue;
+    fmap[f] = static_cast<uint32_t>(out.faces.size());
+    out.faces.push_back({vmap[faces_[f][0]], vmap[faces_[f][1]], vmap[faces_[f][2]]});
+  }
+  out.params.resize(pos_.size());
+  for (uint32_t x = 0; x < pos_.size(); ++x) {
+    if (alive_[x]) {
+      const uint32_t f = vfaces_[x].front();
+      ParamPoint pp{fmap[f], {0, 0, 0}};
+      for (int i = 0; i < 3; ++i) pp.bary[i] = faces_[f][i] == x ? 1.0 : 0.0;
+      out.params[x] = pp;
+    } else {
+      out.params[x] = {fmap[params_[x].face], params_[x].bary};
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+StatusOr<BaseDomain> BuildBaseDomain(const Mesh& mesh, const std::vector<uint8_t>& is_boundary,
+                                     const BaseDomainOptions& options) {
+  if (mesh.faces.empty()) return InvalidMesh("no faces to simplify");
+  if (is_boundary.size() != mesh.positions.size()) return InternalError("boundary flags size mismatch");
+  Simplifier s(mesh, is_boundary);
+  s.Run(options.target_vertices, options.progress);
+  BaseDomain base = s.Extract();
+  for (const ParamPoint& pp : base.params) {
+    if (pp.face >= base.faces.size()) return InternalError("base domain lost an input vertex's parameter");
+  }
+  return base;
+}
+
+}  // namespace eqmesh

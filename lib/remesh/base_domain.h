@@ -1,0 +1,50 @@
+// Base domain of the remesh: a coarse mesh whose vertices are input vertices,
+// plus a bijective parameterization of the input over it (one ParamPoint per
+// input vertex), built by MAPS-style simplification.
+//
+// Follows Lee, Sweldens, Schröder, Cowsar, Dobkin, "MAPS" (SIGGRAPH 1998): each
+// removal flattens the removed vertex's 1-ring with the conformal z^a map,
+// retriangulates it, and relocates every input vertex already mapped into the
+// star by point location in that flat chart.
+// Departures:
+//  * Removal is a half-edge collapse (v into a ring neighbour u), so the new
+//    triangulation is the fan from u and base vertices stay input vertices; the
+//    order is a greedy priority queue (Garland & Heckbert 1997 quadric error plus
+//    a size term, standing in for MAPS's area + curvature weights) instead of
+//    levels of maximal independent sets.
+//  * A collapse must pass the link condition, keep valences in [3, 12], keep
+//    every boundary loop at >= 3 vertices, give positively oriented fan
+//    triangles in the flat chart and in 3D not turn any face by more than ~80°.
+//  * Boundary vertices (half-disc map) collapse only along their boundary, and
+//    input boundary vertices are kept exactly on base boundary edges.
+//  * No parameter smoothing (MAPS §3.4).
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "core/progress.h"
+#include "core/status.h"
+#include "mesh/mesh.h"
+#include "remesh/param_point.h"
+
+namespace eqmesh {
+
+struct BaseDomain {
+  std::vector<uint32_t> base_to_input;  // input vertex of each base vertex
+  std::vector<Face> faces;              // base faces (indices into base_to_input)
+  std::vector<ParamPoint> params;       // per input vertex: base face + barycentric
+};
+
+struct BaseDomainOptions {
+  size_t target_vertices = 0;  // stop once this few vertices remain (or no collapse is valid)
+  ProgressFn progress;
+};
+
+// `mesh` must be clean: manifold, consistently oriented, every vertex referenced.
+// `is_boundary[v]` marks input boundary vertices.
+StatusOr<BaseDomain> BuildBaseDomain(const Mesh& mesh, const std::vector<uint8_t>& is_boundary,
+                                     const BaseDomainOptions& options);
+
+}  // namespace eqmesh

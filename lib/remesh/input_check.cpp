@@ -1,0 +1,62 @@
+// Input validation for the remesher: names the first offending element so a
+// user can find it (and points at --repair).
+#include "remesh/input_check.h"
+
+#include <cmath>
+
+namespace eqmesh {
+namespace {
+
+std::string EdgeName(const MeshTopology& t, uint32_t e) {
+  const Edge& ev = t.EdgeVertices(e);
+  return "edge " + std::to_string(ev[0]) + "-" + std::to_string(ev[1]);
+}
+
+constexpr const char* kHint = " (run with --repair to fix it)";
+
+}  // namespace
+
+Status CheckRemeshable(const Mesh& mesh, const MeshTopology& topology) {
+  if (mesh.faces.empty()) return InvalidMesh("mesh has no faces");
+  for (size_t f = 0; f < mesh.faces.size(); ++f) {
+    for (uint32_t v : mesh.faces[f]) {
+      if (v >= mesh.positions.size()) {
+        return InvalidMesh("face " + std::to_string(f) + " references vertex " + std::to_string(v) +
+                           " but the mesh has " + std::to_string(mesh.positions.size()) + " vertices");
+      }
+      if (!mesh.positions[v].allFinite()) {
+        return InvalidMesh("vertex " + std::to_string(v) + " has a non-finite coordinate");
+      }
+    }
+  }
+  size_t non_manifold = 0, inconsistent = 0;
+  uint32_t first_nm = MeshTopology::kNone, first_inc = MeshTopology::kNone;
+  for (uint32_t e = 0; e < topology.num_edges(); ++e) {
+    if (topology.IsNonManifoldEdge(e)) {
+      if (non_manifold++ == 0) first_nm = e;
+    } else if (topology.IsInconsistentEdge(e)) {
+      if (inconsistent++ == 0) first_inc = e;
+    }
+  }
+  if (non_manifold > 0) {
+    return InvalidMesh(std::to_string(non_manifold) + " non-manifold edge(s) (more than two faces), first " +
+                       EdgeName(topology, first_nm) + kHint);
+  }
+  std::vector<uint32_t> labels;
+  size_t pinched = 0;
+  uint32_t first_pinched = 0;
+  for (uint32_t v = 0; v < topology.num_vertices(); ++v) {
+    if (topology.VertexFans(v, &labels) > 1 && pinched++ == 0) first_pinched = v;
+  }
+  if (pinched > 0) {
+    return InvalidMesh(std::to_string(pinched) + " non-manifold (pinched) vertex(es), first vertex " +
+                       std::to_string(first_pinched) + kHint);
+  }
+  if (inconsistent > 0) {
+    return InvalidMesh(std::to_string(inconsistent) + " inconsistently oriented edge(s), first " +
+                       EdgeName(topology, first_inc) + kHint);
+  }
+  return Status::Ok();
+}
+
+}  // namespace eqmesh

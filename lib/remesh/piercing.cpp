@@ -1,0 +1,404 @@
+// Normal-mesh piercing and parameter refinement (Guskov et al. 2000); see piercing.h.
+#include "remesh/piercing.h"
+
+#include <algorithm>
+#include <cmath>
+#include <mutex>
+
+#include "remesh/level_domain.h"
+#include "remesh/parallel_for.h"
+#include "wavelet/butterfly.h"
+
+namespace eqmesh {
+namespace {
+
+// Rays reach this many edge lengths on either side of the prediction.
+constexpr double kReach = 1.0;
+// The kite of admissible parameters is shrunk toward the edge midpoint by this factor.
+constexpr double kKiteShrink = 0.9;
+// Minimum quality (4 sqrt 3 A / sum l^2) of a child triangle in the chart.
+constexpr double kMinChildQuality = 0.15;
+// Faces crossed when unfolding charts for hits and midpoints.
+constexpr int kChartDepth = 3;
+
+using Vec3d = Eigen::Vector3d;
+
+struct EdgeChoice {
+  Vec3 position = Vec3::Zero();
+  Vec3d u = Vec3d::Zero();  // parameter in the left face's chart
+  VertexKind kind = VertexKind::kNonNormal;
+  bool needs_forward = false;
+};
+
+double Quality2d(const Vec2& a, const Vec2& b, const Vec2& c) {
+  const double denom = (b - a).squaredNorm() + (c - b).squaredNorm() + (a - c).squaredNorm();
+  if (!(denom > 0.0)) return 0.0;
+  return 2.0 * std::sqrt(3.0) * Orient2d(a, b, c) / denom;
+}
+
+Vec3d Midpoint(int slot) {
+  Vec3d u = Vec3d::Zero();
+  u[slot] = 0.5;
+  u[(slot + 1) % 3] = 0.5;
+  return u;
+}
+
+void ClampBary(Vec3d* b) {
+  *b = b->cwiseMax(0.0);
+  const double s = b->sum();
+  *b = s > 0.0 ? Vec3d(*b / s) : Vec3d::Constant(1.0 / 3.0);
+}
+
+class LevelRefiner {
+ public:
+  LevelRefiner(const SemiRegularHierarchy& h, int j, const InputSurface& s, std::vector<Vec3>* positions,
+               std::vector<ParamPoint>* params)
+      : h_(h), j_(j), s_(s), dom_(h, j), pos_(*positions), params_(*params) {}
+
+  void Run(std::vector<Vec3>* positions, std::vector<VertexKind>* kinds, LevelStats* stats);
+  std::vector<ParamPoint> TakeParams() { return std::move(params_out_); }
+
+ private:
+  void BuildBuckets();
+  EdgeChoice PierceEdge(uint32_t k) const;
+  EdgeChoice BoundaryPoint(uint32_t k) const;
+  bool InKite(const Vec3d& u, int slot) const;
+  Vec3 ForwardMap(uint32_t root, const Vec3d& u, const Vec3& fallback_near) const;
+  Vec3d EdgePointIn(uint32_t f, int i) const;
+  bool ChildrenValid(uint32_t f) const;
+  void DemoteInvalidFaces();
+  std::array<std::array<Vec3d, 3>, 4> Children(uint32_t f) const;
+  ParamPoint Relocate(uint32_t f, uint32_t x) const;
+  bool RelocateBoundary(uint32_t f, uint32_t x, ParamPoint* out) const;
+
+  const SemiRegularHierarchy& h_;
+  const int j_;
+  const InputSurface& s_;
+  const LevelDomain dom_;
+  const std::vector<Vec3>& pos_;
+  const std::vector<ParamPoint>& params_;
+  std::vector<uint32_t> bucket_offsets_, bucket_items_;
+  std::vector<Vec3> predicted_;
+  std::vector<LocalFrame> frames_;
+  std::vector<EdgeChoice> choice_;
+  std::vector<ParamPoint> params_out_;
+};
+
+void LevelRefiner::BuildBuckets() {
+  const size_t nf = dom_.faces().size();
+  bucket_offsets_.assign(nf + 1, 0);
+  for (const ParamPoint& p : params_) ++bucket_offsets_[p.face + 1];
+  for (size_t f = 0; f < nf; ++f) bucket_offsets_[f + 1] += bucket_offsets_[f];
+  bucket_items_.resize(params_.size());
+  std::vector<uint32_t> fill(bucket_offsets_.begin(), bucket_offsets_.end() - 1);
+  for (uint32_t x = 0; x < params_.size(); ++x) bucket_items_[fill[params_[x].face]++] = x;
+}
+
+bool LevelRefiner::InKite(const Vec3d& u, int slot) const {
+  const Vec2 a = ReferenceCorner(slot), b = ReferenceCorner((slot + 1) % 3), c = ReferenceCorner((slot + 2) % 3);
+  const Vec2 g = (a + b + c) / 3.0, g2 = (2.0 * a + 2.0 * b - c) / 3.0, m = 0.5 * (a + b);
+  const Vec2 p = m + (ToReference2d(u) - m) / kKiteShrink;
+  return Orient2d(a, g2, p) >= 0.0 && Orient2d(g2, b, p) >= 0.0 && Orient2d(b, g, p) >= 0.0 &&
+         Orient2d(g, a, p) >= 0.0;
+}
+
+EdgeChoice LevelRefiner::PierceEdge(uint32_t k) const {
+  const EdgeSides& sides = dom_.Sides(k);
+  if (sides.right == kNoNeighbour) return BoundaryPoint(k);
+  const Edge& e = h_.OddEdge(j_, k);
+  const Vec3& p = predicted_[k];
+  const Vec3& n = frames_[k].normal;
+  const double reach = kReach * (pos_[e[0]] - pos_[e[1]]).norm();
+  std::vector<RayHit> hits;
+  s_.bvh->RayAllHits(p - reach * n, n, 0.0, 2.0 * reach, &hits);
+  std::sort(hits.begin(), hits.end(),
+            [reach](const RayHit& x, const RayHit& y) { return std::abs(x.t - reach) < std::abs(y.t - reach); });
+  EdgeChoice out;
+  if (!hits.empty()) {
+    const Chart chart(dom_, sides.left, kChartDepth);
+    for (const RayHit& hit : hits) {
+      const Face& tri = s_.mesh->faces[hit.face];
+      Vec3d u = Vec3d::Zero();
+      bool mapped = true;
+      for (int i = 0; i < 3 && mapped; ++i) {
+        Vec3d ui;
+        mapped = chart.Map(params_[tri[i]], &ui);
+        u += hit.barycentric[i] * ui;
+      }
+      if (!mapped || !InKite(u, sides.left_slot)) continue;
+      out.position = p + (hit.t - reach) * n;
+      out.u = u;
+      out.kind = VertexKind::kNormal;
+      return out;
+    }
+  }
+  out.u = Midpoint(sides.left_slot);
+  out.kind = VertexKind::kNonNormal;
+  out.needs_forward = true;
+  return out;
+}
+
+// Boundary edge: the parametric midpoint of the input boundary polyline between
+// the edge's endpoints (input boundary vertices sit exactly on the edge).
+EdgeChoice LevelRefiner::BoundaryPoint(uint32_t k) const {
+  const EdgeSides& sides = dom_.Sides(k);
+  const uint32_t f = sides.left;
+  const int a = sides.left_slot, b = (a + 1) % 3, c = (a + 2) % 3;
+  const Face& face = dom_.faces()[f];
+  std::vector<std::pair<double, uint32_t>> chain;
+  for (uint32_t n = bucket_offsets_[f]; n < bucket_offsets_[f + 1]; ++n) {
+    const uint32_t x = bucket_items_[n];
+    const ParamPoint& p = params_[x];
+    if (s_.is_boundary[x] && p.bary[c] == 0.0 && p.bary[a] > 0.0 && p.bary[b] > 0.0) {
+      chain.push_back({p.bary[b], x});
+    }
+  }
+  std::sort(chain.begin(), chain.end());
+  double t0 = 0.0, t1 = 1.0;
+  Vec3 p0 = pos_[face[a]], p1 = pos_[face[b]];
+  for (const auto& [t, x] : chain) {
+    if (t <= 0.5) {
+      t0 = t;
+      p0 = s_.mesh->positions[x];
+    } else {
+      t1 = t;
+      p1 = s_.mesh->positions[x];
+      break;
+    }
+  }
+  EdgeChoice out;
+  const double w = t1 > t0 ? (0.5 - t0) / (t1 - t0) : 0.5;
+  out.position = (1.0 - w) * p0 + w * p1;
+  out.u = Midpoint(a);
+  out.kind = VertexKind::kBoundary;
+  return out;
+}
+
+// Surface point at chart parameter u of face `root`: the input triangle whose
+// chart image contains u.
+Vec3 LevelRefiner::ForwardMap(uint32_t root, const Vec3d& u, const Vec3& fallback_near) const {
+  const Chart chart(dom_, root, kChartDepth);
+  const Vec2 target = ToReference2d(u);
+  double best = -1e300;
+  Vec3 best_point = Vec3::Zero();
+  for (uint32_t f : chart.faces()) {
+    for (uint32_t n = bucket_offsets_[f]; n < bucket_offsets_[f + 1]; ++n) {
+      const uint32_t x = bucket_items_[n];
+      for (uint32_t q = s_.face_offsets[x]; q < s_.face_offsets[x + 1]; ++q) {
+        const Face& tri = s_.mesh->faces[s_.vertex_faces[q]];
+        Vec2 c2[3];
+        bool mapped = true;
+        for (int i = 0; i < 3 && mapped; ++i) {
+          Vec3d ui;
+          mapped = chart.Map(params_[tri[i]], &ui);
+          c2[i] = ToReference2d(ui);
+        }
+        Vec3d b;
+        if (!mapped || !Barycentric2d(target, c2[0], c2[1], c2[2], &b)) continue;
+        if (b.minCoeff() > best) {
+          best = b.minCoeff();
+          ClampBary(&b);
+          best_point = b[0] * s_.mesh->positions[tri[0]] + b[1] * s_.mesh->positions[tri[1]] +
+                       b[2] * s_.mesh->positions[tri[2]];
+        }
+      }
+    }
+    if (best >= -1e-9) break;
+  }
+  if (best > -0.5) return best_point;
+  const ClosestPointResult cp = s_.bvh->ClosestPoint(fallback_near);
+  return cp.found() ? cp.point : fallback_near;
+}
+
+Vec3d LevelRefiner::EdgePointIn(uint32_t f, int i) const {
+  const uint32_t k = dom_.EdgeOf(f, i);
+  const EdgeSides& sides = dom_.Sides(k);
+  if (sides.left == f && sides.left_slot == i) return choice_[k].u;
+  return dom_.LeftToRight(k, choice_[k].u);
+}
+
+std::array<std::array<Vec3d, 3>, 4> LevelRefiner::Children(uint32_t f) const {
+  const Eigen::Matrix3d id = Eigen::Matrix3d::Identity();
+  const Vec3d q0 = EdgePointIn(f, 0), q1 = EdgePointIn(f, 1), q2 = EdgePointIn(f, 2);
+  return {{{id.col(0), q0, q2}, {q0, id.col(1), q1}, {q2, q1, id.col(2)}, {q0, q1, q2}}};
+}
+
+bool LevelRefiner::ChildrenValid(uint32_t f) const {
+  for (const auto& child : Children(f)) {
+    const Vec2 a = ToReference2d(child[0]), b = ToReference2d(child[1]), c = ToReference2d(child[2]);
+    if (Quality2d(a, b, c) < kMinChildQuality) return false;
+  }
+  return true;
+}
+
+// A face whose children would fold or degenerate gets its worst normal edge
+// moved back to the parametric midpoint, until all faces are valid (midpoints
+// alone always are).
+void LevelRefiner::DemoteInvalidFaces() {
+  bool changed = true;
+  while (changed) {
+    changed = false;
+    for (uint32_t f = 0; f < dom_.faces().size(); ++f) {
+      while (!ChildrenValid(f)) {
+        int worst = -1;
+        double worst_dist = -1.0;
+        for (int i = 0; i < 3; ++i) {
+          const uint32_t k = dom_.EdgeOf(f, i);
+          if (choice_[k].kind != VertexKind::kNormal) continue;
+          const double d = (ToReference2d(EdgePointIn(f, i)) - ToReference2d(Midpoint(i))).norm();
+          if (d > worst_dist) {
+            worst_dist = d;
+            worst = i;
+          }
+        }
+        if (worst < 0) break;  // only midpoints left: cannot happen for valid charts
+        const uint32_t k = dom_.EdgeOf(f, worst);
+        choice_[k].u = Midpoint(dom_.Sides(k).left_slot);
+        choice_[k].kind = VertexKind::kNonNormal;
+        choice_[k].needs_forward = true;
+        changed = true;
+      }
+    }
+  }
+}
+
+bool LevelRefiner::RelocateBoundary(uint32_t f, uint32_t x, ParamPoint* out) const {
+  const ParamPoint& p = params_[x];
+  int zero = -1;
+  for (int i = 0; i < 3; ++i) {
+    if (p.bary[i] == 0.0) zero = i;
+  }
+  if (zero < 0) return false;
+  const int e = (zero + 1) % 3;
+  if (dom_.Neighbour(f, e) != kNoNeighbour) return false;
+  const double s = p.bary[(e + 1) % 3];  // weight of the edge's second corner
+  // Child c of the 1-to-4 split holds corner c at slot c. The first half of the
+  // edge lies in child e with m_e at slot e+1; the second in child e+1 with m_e at slot e.
+  std::array<double, 3> b{0, 0, 0};
+  const bool first_half = s <= 0.5;
+  const int child = first_half ? e : (e + 1) % 3;
+  if (first_half) {
+    b[e] = 1.0 - 2.0 * s;
+    b[(e + 1) % 3] = 2.0 * s;
+  } else {
+    b[e] = 2.0 - 2.0 * s;
+    b[(e + 1) % 3] = 2.0 * s - 1.0;
+  }
+  *out = {static_cast<uint32_t>(4 * f + child), b};
+  return true;
+}
+
+ParamPoint LevelRefiner::Relocate(uint32_t f, uint32_t x) const {
+  ParamPoint out;
+  if (s_.is_boundary[x] && RelocateBoundary(f, x, &out)) return out;
+  const ParamPoint& p = params_[x];
+  const Vec2 q = ToReference2d(Vec3d(p.bary[0], p.bary[1], p.bary[2]));
+  double best = -1e300;
+  auto consider = [&](uint32_t face, const std::array<std::array<Vec3d, 3>, 4>& kids, const Eigen::Matrix3d& to_f) {
+    for (int c = 0; c < 4; ++c) {
+      Vec3d b;
+      if (!Barycentric2d(q, ToReference2d(to_f * kids[c][0]), ToReference2d(to_f * kids[c][1]),
+                         ToReference2d(to_f * kids[c][2]), &b)) {
+        continue;
+      }
+      if (b.minCoeff() > best) {
+        best = b.minCoeff();
+        out.face = 4 * face + static_cast<uint32_t>(c);
+        out.bary = {b[0], b[1], b[2]};
+      }
+    }
+  };
+  consider(f, Children(f), Eigen::Matrix3d::Identity());
+  if (best < -1e-12) {
+    for (int i = 0; i < 3; ++i) {
+      const uint32_t g = dom_.Neighbour(f, i);
+      if (g != kNoNeighbour) consider(g, Children(g), dom_.NeighbourCorners(f, i));
+    }
+  }
+  Vec3d b(out.bary[0], out.bary[1], out.bary[2]);
+  ClampBary(&b);
+  out.bary = {b[0], b[1], b[2]};
+  return out;
+}
+
+void LevelRefiner::Run(std::vector<Vec3>* positions, std::vector<VertexKind>* kinds, LevelStats* stats) {
+  BuildBuckets();
+  const StencilTable stencils = BuildButterflyStencils(h_, j_);
+  ApplyStencils(stencils, pos_, &predicted_);
+  frames_ = ComputeOddFrames(h_, j_, stencils, pos_);
+  const size_t n_edges = dom_.num_edges();
+  choice_.resize(n_edges);
+  ParallelFor(n_edges, [&](size_t begin, size_t end, size_t) {
+    for (size_t k = begin; k < end; ++k) choice_[k] = PierceEdge(static_cast<uint32_t>(k));
+  });
+  DemoteInvalidFaces();
+  ParallelFor(n_edges, [&](size_t begin, size_t end, size_t) {
+    for (size_t k = begin; k < end; ++k) {
+      EdgeChoice& c = choice_[k];
+      if (c.needs_forward) c.position = ForwardMap(dom_.Sides(static_cast<uint32_t>(k)).left, c.u, predicted_[k]);
+    }
+  });
+  std::vector<ParamPoint> next(params_.size());
+  const size_t nf = dom_.faces().size();
+  ParallelFor(nf, [&](size_t begin, size_t end, size_t) {
+    for (size_t f = begin; f < end; ++f) {
+      for (uint32_t n = bucket_offsets_[f]; n < bucket_offsets_[f + 1]; ++n) {
+        const uint32_t x = bucket_items_[n];
+        next[x] = Relocate(static_cast<uint32_t>(f), x);
+      }
+    }
+  });
+  for (const EdgeChoice& c : choice_) {
+    positions->push_back(c.position);
+    kinds->push_back(c.kind);
+    if (c.kind == VertexKind::kNormal) ++stats->normal;
+    if (c.kind == VertexKind::kNonNormal) ++stats->non_normal;
+    if (c.kind == VertexKind::kBoundary) ++stats->boundary;
+  }
+  // Remesh error seen from the input vertices (cheap stand-in for Metro).
+  const std::vector<Face>& fine = h_.Faces(j_ + 1);
+  std::mutex lock;
+  double sum = 0.0;
+  ParallelFor(next.size(), [&](size_t begin, size_t end, size_t) {
+    double local = 0.0;
+    for (size_t x = begin; x < end; ++x) {
+      const Face& t = fine[next[x].face];
+      std::array<double, 3> b;
+      const Vec3 q = ClosestPointOnTriangle(s_.mesh->positions[x], (*positions)[t[0]], (*positions)[t[1]],
+                                            (*positions)[t[2]], &b);
+      local += (q - s_.mesh->positions[x]).squaredNorm();
+    }
+    std::lock_guard<std::mutex> g(lock);
+    sum += local;
+  });
+  stats->rms_error = next.empty() ? 0.0 : std::sqrt(sum / static_cast<double>(next.size()));
+  params_out_ = std::move(next);
+}
+
+}  // namespace
+
+InputSurface::InputSurface(const Mesh& m, const TriangleBvh& b, std::vector<uint8_t> boundary)
+    : mesh(&m), bvh(&b), is_boundary(std::move(boundary)) {
+  face_offsets.assign(m.positions.size() + 1, 0);
+  for (const Face& f : m.faces) {
+    for (uint32_t v : f) ++face_offsets[v + 1];
+  }
+  for (size_t v = 0; v < m.positions.size(); ++v) face_offsets[v + 1] += face_offsets[v];
+  vertex_faces.resize(face_offsets.back());
+  std::vector<uint32_t> fill(face_offsets.begin(), face_offsets.end() - 1);
+  for (uint32_t f = 0; f < m.faces.size(); ++f) {
+    for (uint32_t v : m.faces[f]) vertex_faces[fill[v]++] = f;
+  }
+}
+
+void RefineLevel(const SemiRegularHierarchy& hierarchy, int j, const InputSurface& surface,
+                 std::vector<Vec3>* positions, std::vector<VertexKind>* kinds,
+                 std::vector<ParamPoint>* params, LevelStats* stats) {
+  *stats = LevelStats();
+  std::vector<Vec3> level = *positions;
+  LevelRefiner refiner(hierarchy, j, surface, &level, params);
+  refiner.Run(positions, kinds, stats);
+  *params = refiner.TakeParams();
+}
+
+}  // namespace eqmesh

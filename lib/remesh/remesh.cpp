@@ -1,0 +1,229 @@
+// Remesh(): input checks, component split, MAPS base domain, then normal-mesh
+// piercing level by level (Lee et al. 1998; Guskov et al. 2000). See remesh.h.
+#include "remesh/remesh.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "mesh/mesh_topology.h"
+#include "mesh/repair.h"
+#include "mesh/triangle_bvh.h"
+#include "remesh/base_domain.h"
+#include "remesh/input_check.h"
+#include "remesh/piercing.h"
+
+namespace eqmesh {
+namespace {
+
+// Automatic levels stop once the estimated PSNR (input vertices to the remesh)
+// reaches this, which leaves margin for the Metro PSNR bar of 84 dB ...
+constexpr double kAutoTargetPsnrDb = 86.0;
+// ... or once a level gains less than this ...
+constexpr double kAutoMinGainDb = 0.5;
+// ... or before the finest level would exceed this multiple of the input vertices.
+constexpr double kAutoMaxVertexFactor = 24.0;
+constexpr int kMaxLevels = 10;
+// Components with fewer vertices are carried as they are (kept_exactly).
+constexpr size_t kMinComponentVertices = 20;
+// Automatic base size: this fraction of the input vertices, but at least
+// kMinBasePerComponent per remeshed component.
+constexpr double kAutoBaseFraction = 0.003;
+constexpr size_t kMinBasePerComponent = 8;
+
+struct Prepared {
+  Mesh surface;                  // components to remesh, compacted
+  std::vector<uint8_t> boundary; // per surface vertex
+  Mesh kept;                     // components carried exactly
+  size_t components_remeshed = 0;
+  size_t components_kept = 0;
+  size_t boundary_loops = 0;
+  size_t input_vertices = 0;
+};
+
+Mesh DropRepeatedIndexFaces(const Mesh& in, size_t* dropped) {
+  Mesh out;
+  out.positions = in.positions;
+  for (const Face& f : in.faces) {
+    if (f[0] == f[1] || f[1] == f[2] || f[2] == f[0]) {
+      ++*dropped;
+      continue;
+    }
+    out.faces.push_back(f);
+  }
+  return out;
+}
+
+// Copies the faces selected by `take` into a compact mesh.
+Mesh ExtractFaces(const Mesh& m, const std::vector<uint8_t>& take, std::vector<uint32_t>* vmap_out) {
+  Mesh out;
+  std::vector<uint32_t> vmap(m.positions.size(), MeshTopology::kNone);
+  for (size_t f = 0; f < m.faces.size(); ++f) {
+    if (!take[f]) continue;
+    Face nf;
+    for (int i = 0; i < 3; ++i) {
+      uint32_t& slot = vmap[m.faces[f][i]];
+      if (slot == MeshTopology::kNone) {
+        slot = static_cast<uint32_t>(out.positions.size());
+        out.positions.push_back(m.positions[m.faces[f][i]]);
+      }
+      nf[i] = slot;
+    }
+    out.faces.push_back(nf);
+  }
+  if (vmap_out) *vmap_out = std::move(vmap);
+  return out;
+}
+
+StatusOr<Prepared> Prepare(const Mesh& input, const RemeshOptions& options, RemeshReport* report) {
+  Mesh mesh = input;
+  if (options.repair) {
+    RepairReport repair;
+    EQMESH_ASSIGN_OR_RETURN(mesh, RepairForRemeshing(input, &repair));
+    if (!repair.Unchanged()) report->notes.push_back("repair: " + repair.Summary());
+  }
+  if (mesh.faces.empty()) return InvalidMesh("mesh has no faces");
+  {
+    const MeshTopology topology(mesh);
+    EQMESH_RETURN_IF_ERROR(CheckRemeshable(mesh, topology));
+  }
+  size_t dropped = 0;
+  mesh = DropRepeatedIndexFaces(mesh, &dropped);
+  if (dropped > 0) report->notes.push_back("dropped " + std::to_string(dropped) + " faces with a repeated vertex");
+  if (mesh.faces.empty()) return InvalidMesh("mesh has no faces with three distinct vertices");
+  mesh = ExtractFaces(mesh, std::vector<uint8_t>(mesh.faces.size(), 1), nullptr);
+
+  Prepared out;
+  out.input_vertices = mesh.positions.size();
+  const MeshTopology topology(mesh);
+  const std::vector<uint32_t>& comp = topology.FaceComponents();
+  std::vector<size_t> comp_vertices(topology.num_components(), 0);
+  std::vector<uint32_t> vertex_comp(mesh.positions.size(), 0);
+  for (size_t f = 0; f < mesh.faces.size(); ++f) {
+    for (uint32_t v : mesh.faces[f]) vertex_comp[v] = comp[f];
+  }
+  for (uint32_t c : vertex_comp) ++comp_vertices[c];
+  std::vector<uint8_t> remesh_face(mesh.faces.size(), 0), kept_face(mesh.faces.size(), 0);
+  for (size_t f = 0; f < mesh.faces.size(); ++f) {
+    const bool small = comp_vertices[comp[f]] < kMinComponentVertices;
+    (small ? kept_face : remesh_face)[f] = 1;
+  }
+  for (size_t n : comp_vertices) (n < kMinComponentVertices ? out.components_kept : out.components_remeshed)++;
+  std::vector<uint32_t> vmap;
+  out.surface = ExtractFaces(mesh, remesh_face, &vmap);
+  out.kept = ExtractFaces(mesh, kept_face, nullptr);
+  out.boundary.assign(out.surface.positions.size(), 0);
+  const std::vector<BoundaryLoop> loops = topology.BoundaryLoops();
+  for (const BoundaryLoop& loop : loops) {
+    bool remeshed = false;
+    for (uint32_t v : loop.vertices) {
+      if (vmap[v] != MeshTopology::kNone) {
+        out.boundary[vmap[v]] = 1;
+        remeshed = true;
+      }
+    }
+    if (remeshed) ++out.boundary_loops;
+  }
+  return out;
+}
+
+size_t AutoBaseTarget(const Prepared& p, const RemeshOptions& options) {
+  if (options.base_vertices > 0) return static_cast<size_t>(options.base_vertices);
+  const size_t by_fraction = static_cast<size_t>(kAutoBaseFraction * static_cast<double>(p.input_vertices));
+  return std::max(by_fraction, kMinBasePerComponent * p.components_remeshed);
+}
+
+double PsnrDb(double diagonal, double rms) {
+  if (!(rms > 0.0)) return 200.0;
+  return 20.0 * std::log10(diagonal / rms);
+}
+
+bool StopRefining(const RemeshOptions& options, int levels_done, const std::vector<double>& psnr,
+                  uint64_t next_vertices, size_t input_vertices) {
+  if (options.levels >= 0) return levels_done >= options.levels;
+  if (levels_done >= kMaxLevels) return true;
+  if (next_vertices > kAutoMaxVertexFactor * static_cast<double>(input_vertices)) return true;
+  if (psnr.empty()) return false;
+  if (psnr.back() >= kAutoTargetPsnrDb) return true;
+  return psnr.size() >= 3 && psnr.back() - psnr[psnr.size() - 2] < kAutoMinGainDb;
+}
+
+}  // namespace
+
+StatusOr<SemiRegularMesh> Remesh(const Mesh& input, const RemeshOptions& options, RemeshReport* report_out) {
+  const auto start = std::chrono::steady_clock::now();
+  RemeshReport local_report;
+  RemeshReport& report = report_out ? *report_out : local_report;
+  report = RemeshReport();
+  if (options.levels < -1 || options.levels > kMaxLevels) {
+    return InvalidArgument("levels " + std::to_string(options.levels) + " outside [-1, " +
+                           std::to_string(kMaxLevels) + "]");
+  }
+  if (options.base_vertices < -1 || options.base_vertices == 0) {
+    return InvalidArgument("base vertex count " + std::to_string(options.base_vertices) + " must be positive or -1");
+  }
+  EQMESH_ASSIGN_OR_RETURN(Prepared prep, Prepare(input, options, &report));
+  report.input_vertices = prep.input_vertices;
+  report.components_remeshed = prep.components_remeshed;
+  report.components_kept_exactly = prep.components_kept;
+  report.kept_exactly_vertices = prep.kept.positions.size();
+  report.boundary_loops = prep.boundary_loops;
+
+  SemiRegularMesh out;
+  out.kept_exactly = prep.kept;
+  if (prep.surface.faces.empty()) {
+    EQMESH_ASSIGN_OR_RETURN(out.hierarchy, SemiRegularHierarchy::Build(0, {}, 0));
+    report.notes.push_back("every component is too small to remesh: all kept exactly");
+    report.output_vertices = prep.kept.positions.size();
+    return out;
+  }
+  EQMESH_ASSIGN_OR_RETURN(TriangleBvh bvh, TriangleBvh::Build(prep.surface));
+  BaseDomainOptions base_options;
+  base_options.target_vertices = AutoBaseTarget(prep, options);
+  base_options.progress = options.progress;
+  EQMESH_ASSIGN_OR_RETURN(BaseDomain base, BuildBaseDomain(prep.surface, prep.boundary, base_options));
+  report.base_vertices = base.base_to_input.size();
+  if (report.base_vertices > base_options.target_vertices) {
+    report.notes.push_back("simplification stalled at " + std::to_string(report.base_vertices) +
+                           " base vertices (target " + std::to_string(base_options.target_vertices) + ")");
+  }
+
+  const uint32_t nb = static_cast<uint32_t>(base.base_to_input.size());
+  std::vector<Vec3> positions;
+  for (uint32_t v : base.base_to_input) positions.push_back(prep.surface.positions[v]);
+  std::vector<VertexKind> kinds(nb, VertexKind::kBase);
+  std::vector<ParamPoint> params = std::move(base.params);
+  const InputSurface surface(prep.surface, bvh, prep.boundary);
+  const double diagonal = BoundingBoxDiagonal(prep.surface);
+  size_t normal = 0, non_normal = 0;
+  int levels = 0;
+  SemiRegularHierarchy h;
+  while (true) {
+    const uint64_t next_vertices =
+        levels == 0 ? nb + 3ull * base.faces.size() / 2 : static_cast<uint64_t>(positions.size()) * 4;
+    if (StopRefining(options, levels, report.estimated_psnr_db_per_level, next_vertices, prep.input_vertices)) break;
+    EQMESH_ASSIGN_OR_RETURN(h, SemiRegularHierarchy::Build(nb, base.faces, levels + 1));
+    ReportProgress(options.progress, "pierce level " + std::to_string(levels + 1), 0.0);
+    LevelStats stats;
+    RefineLevel(h, levels, surface, &positions, &kinds, &params, &stats);
+    normal += stats.normal;
+    non_normal += stats.non_normal;
+    const size_t pierced = stats.normal + stats.non_normal;
+    report.normal_fraction_per_level.push_back(pierced ? static_cast<double>(stats.normal) / pierced : 1.0);
+    report.estimated_psnr_db_per_level.push_back(PsnrDb(diagonal, stats.rms_error));
+    ++levels;
+  }
+  if (levels == 0 || h.levels() != levels) {
+    EQMESH_ASSIGN_OR_RETURN(h, SemiRegularHierarchy::Build(nb, base.faces, levels));
+  }
+  out.hierarchy = std::move(h);
+  out.positions = std::move(positions);
+  out.kinds = std::move(kinds);
+  report.levels = levels;
+  report.normal_fraction = normal + non_normal ? static_cast<double>(normal) / (normal + non_normal) : 1.0;
+  report.output_vertices = out.positions.size() + out.kept_exactly.positions.size();
+  report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace eqmesh

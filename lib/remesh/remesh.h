@@ -1,0 +1,55 @@
+// Normal remeshing: any manifold triangle mesh (closed or with holes, one or many
+// components) -> a semi-regular normal mesh over a coarse base domain whose
+// vertices are input vertices.
+//
+// Papers: Lee, Sweldens, Schröder, Cowsar, Dobkin, "MAPS" (SIGGRAPH 1998) for the
+// base domain and its parameterization; Guskov, Vidimče, Sweldens, Schröder,
+// "Normal Meshes" (SIGGRAPH 2000) for the piercing. Departures are listed in
+// base_domain.h and piercing.h.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "core/progress.h"
+#include "core/status.h"
+#include "mesh/mesh.h"
+#include "mesh/semi_regular.h"
+
+namespace eqmesh {
+
+struct RemeshOptions {
+  // Subdivision levels. -1: automatic (refine until the estimated remesh PSNR
+  // reaches kAutoTargetPsnrDb or stops improving; see remesh.cpp). Range [-1, 10].
+  int levels = -1;
+  // Base vertices to aim for. -1: automatic, 0.3 % of the input vertices, but at
+  // least a few per component so the base can carry the shape.
+  int base_vertices = -1;
+  // Run RepairForRemeshing first instead of refusing non-manifold input.
+  bool repair = false;
+  ProgressFn progress;
+};
+
+struct RemeshReport {
+  size_t input_vertices = 0;   // referenced input vertices
+  size_t base_vertices = 0;
+  size_t output_vertices = 0;  // finest level (plus kept_exactly vertices)
+  int levels = 0;
+  // Share of new (odd), non-boundary vertices that are normal, over all levels.
+  double normal_fraction = 0.0;
+  std::vector<double> normal_fraction_per_level;  // refinement j -> j+1 at [j]
+  // Remesh error estimated during refinement (input vertices to the remesh), per level.
+  std::vector<double> estimated_psnr_db_per_level;
+  size_t components_remeshed = 0;
+  size_t components_kept_exactly = 0;
+  size_t kept_exactly_vertices = 0;
+  size_t boundary_loops = 0;
+  double seconds = 0.0;
+  std::vector<std::string> notes;
+};
+
+StatusOr<SemiRegularMesh> Remesh(const Mesh& input, const RemeshOptions& options,
+                                 RemeshReport* report);
+
+}  // namespace eqmesh

@@ -1,0 +1,112 @@
+// eqmesh remesh IN OUT: irregular manifold mesh -> semi-regular normal mesh
+// (finest level written as a plain mesh). Thin layer over Remesh() (lib/remesh).
+#include <chrono>
+#include <cstdio>
+#include <string>
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "mesh/mesh_io.h"
+#include "mesh/semi_regular.h"
+#include "remesh/remesh.h"
+#include "tools/command.h"
+#if __has_include("metrics/surface_distance.h")
+#include "metrics/surface_distance.h"
+#define EQMESH_REMESH_HAVE_METRICS 1
+#endif
+
+namespace {
+
+constexpr const char* kName = "remesh";
+
+// Draws "stage  42%" on one terminal line; silent when stderr is not a TTY.
+eqmesh::ProgressFn TerminalProgress() {
+  if (!isatty(fileno(stderr))) return nullptr;
+  return [last = std::string(), last_pct = -1](const std::string& stage, double fraction) mutable {
+    const int pct = static_cast<int>(fraction * 100.0);
+    if (stage == last && pct == last_pct) return;
+    last = stage;
+    last_pct = pct;
+    std::fprintf(stderr, "\r\033[K%s %3d%%", stage.c_str(), pct);
+    std::fflush(stderr);
+  };
+}
+
+int RunRemesh(int argc, char** argv) {
+  CLI::App app{"Remesh a manifold triangle mesh into a semi-regular normal mesh", argv[0]};
+  std::string in_path, out_path;
+  int levels = -1, base_vertices = -1;
+  bool repair = false, json = false;
+  app.add_option("IN", in_path, "input mesh (.obj .ply .off .gltf .glb, optionally .gz)")->required();
+  app.add_option("OUT", out_path, "output mesh, finest level (.obj .ply .off .glb)")->required();
+  app.add_option("--levels", levels, "subdivision levels (-1: automatic, by measured error)")
+      ->check(CLI::Range(-1, 10));
+  app.add_option("--base-vertices", base_vertices, "base mesh size to aim for (-1: 0.3% of the input)")
+      ->check(CLI::Range(-1, 1 << 30));
+  app.add_flag("--repair", repair, "repair non-manifold / misoriented input instead of refusing it");
+  app.add_flag("--json", json, "print one JSON object with the remesh report");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  if (base_vertices == 0) return eqmesh::cli::Fail(kName, "--base-vertices must be positive or -1");
+
+  eqmesh::ReadReport read_report;
+  auto mesh = eqmesh::ReadMesh(in_path, &read_report);
+  if (!mesh.ok()) return eqmesh::cli::Fail(kName, mesh.status().message());
+  eqmesh::RemeshOptions options;
+  options.levels = levels;
+  options.base_vertices = base_vertices;
+  options.repair = repair;
+  options.progress = TerminalProgress();
+  eqmesh::RemeshReport report;
+  auto remeshed = eqmesh::Remesh(*mesh, options, &report);
+  if (options.progress) std::fprintf(stderr, "\r\033[K");
+  if (!remeshed.ok()) return eqmesh::cli::Fail(kName, in_path + ": " + remeshed.status().message());
+  const eqmesh::Mesh finest = eqmesh::ExtractLevel(*remeshed, remeshed->hierarchy.levels());
+  const eqmesh::Status written = eqmesh::WriteMesh(finest, out_path);
+  if (!written.ok()) return eqmesh::cli::Fail(kName, written.message());
+  if (!json) {
+    std::printf("%s: %zu input vertices -> base %zu, %d levels, %zu vertices, normal %.2f%%, %.2f s\n",
+                out_path.c_str(), report.input_vertices, report.base_vertices, report.levels,
+                report.output_vertices, 100.0 * report.normal_fraction, report.seconds);
+    return 0;
+  }
+  nlohmann::json j;
+  j["input"] = in_path;
+  j["output"] = out_path;
+  j["input_vertices"] = report.input_vertices;
+  j["base_vertices"] = report.base_vertices;
+  j["levels"] = report.levels;
+  j["output_vertices"] = report.output_vertices;
+  j["output_faces"] = finest.faces.size();
+  j["normal_fraction"] = report.normal_fraction;
+  j["normal_fraction_per_level"] = report.normal_fraction_per_level;
+  j["estimated_psnr_db_per_level"] = report.estimated_psnr_db_per_level;
+  j["components_remeshed"] = report.components_remeshed;
+  j["components_kept_exactly"] = report.components_kept_exactly;
+  j["kept_exactly_vertices"] = report.kept_exactly_vertices;
+  j["boundary_loops"] = report.boundary_loops;
+  j["seconds"] = report.seconds;
+#ifdef EQMESH_REMESH_HAVE_METRICS
+  auto cmp = eqmesh::CompareSurfaces(finest, *mesh, eqmesh::CompareOptions());
+  if (cmp.ok()) {
+    j["psnr_db"] = cmp->psnr_db;
+    j["hausdorff"] = cmp->hausdorff;
+  } else {
+    report.notes.push_back("psnr not measured: " + cmp.status().message());
+  }
+#else
+  report.notes.push_back("psnr not measured: metrics library not built");
+#endif
+  j["notes"] = report.notes;
+  std::printf("%s\n", j.dump().c_str());
+  return 0;
+}
+
+}  // namespace
+
+EQMESH_REGISTER_COMMAND("remesh", "remesh a manifold mesh into a semi-regular normal mesh", RunRemesh);
