@@ -52,6 +52,7 @@ nlohmann::json ToJson(const InfoResult& r) {
   j["inconsistent_edges"] = d.inconsistent_edges;
   j["components"] = d.components;
   j["closed_components"] = d.closed_components;
+  j["vertex_connected_components"] = d.vertex_connected_components;
   j["genus"] = GenusArray(d.closed_genus);
   j["degenerate_faces"] = d.degenerate_faces;
   j["duplicate_positions"] = d.duplicate_positions;
@@ -97,7 +98,8 @@ void PrintTable(const InfoResult& r) {
   row("non-manifold edges", num(d.non_manifold_edges));
   row("non-manifold vertices", num(d.non_manifold_vertices));
   row("inconsistent edges", num(d.inconsistent_edges));
-  row("components", num(d.components) + " (" + num(d.closed_components) + " closed)");
+  row("components", num(d.components) + " (" + num(d.closed_components) + " closed; " +
+                        num(d.vertex_connected_components) + " when touching at a vertex counts)");
   row("genus (closed comps.)", GenusSummary(d.closed_genus));
   row("degenerate faces", num(d.degenerate_faces));
   row("duplicate positions", num(d.duplicate_positions));

@@ -62,8 +62,9 @@ constexpr uint8_t kKnownFlags = kHasKeptExactly;
 
 // lambda and the tangential factor travel as log2 codes in 1/kLogCodeScale steps;
 // the encoder codes with the value the decoder will rebuild from the code.
-constexpr double kLogCodeScale = 64.0;
-constexpr int64_t kMaxLogCode = 64 * 200;  // |log2| <= 200: far beyond any sane value
+// Same 1/16-octave steps as the EQ coder's own lambda code (coding/eq/eq_model.h).
+constexpr double kLogCodeScale = 16.0;
+constexpr int64_t kMaxLogCode = 16 * 200;  // |log2| <= 200: far beyond any sane value
 
 // Limits the decoder enforces before allocating (hostile-stream safety).
 constexpr int kMaxLevels = 12;

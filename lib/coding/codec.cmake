@@ -20,6 +20,7 @@ add_library(eqmesh_encoder STATIC
   ${EQMESH_CODEC_DIR}/semi_regular_reorder.cpp
   ${EQMESH_CODEC_DIR}/base_influence.cpp
   ${EQMESH_CODEC_DIR}/level_encoder.cpp
+  ${EQMESH_CODEC_DIR}/closed_loop.cpp
   ${EQMESH_CODEC_DIR}/encoder.cpp
   ${EQMESH_CODEC_DIR}/rate_control.cpp)
 target_link_libraries(eqmesh_encoder PUBLIC eqmesh_decoder eqmesh_eq_encoder PRIVATE draco::draco)

@@ -86,7 +86,7 @@ Status CheckFinite(const std::vector<Vec3>& values, int level) {
 // Runs the refinements 0 .. levels-1 on top of the decoded base.
 Status DecodeLevels(const uint8_t* data, const StreamInfo& s, const StreamHeader& h, int levels,
                     SemiRegularMesh* mesh) {
-  const LevelCodingParams params{h.coder, h.lambda(), h.tangential_factor(), h.quantum};
+  const LevelCodingParams params{h.coder, h.lambda_code, h.lambda(), h.tangential_factor(), h.quantum};
   for (int j = 0; j < levels; ++j) {
     const LevelSynthesis step(mesh->hierarchy, j, h.transform);
     const std::vector<LocalFrame> frames = step.Frames(mesh->positions);

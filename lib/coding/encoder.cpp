@@ -1,24 +1,25 @@
 // Closed-loop encoder (see encoder.h for the papers and departures).
 //
-// The exact loop, unlifted transform:
-//   1. base chunk: Draco-code the level-0 positions at the R-D chosen depth; the
-//      semi-regular mesh is renumbered to the order the chunk decodes to;
-//   2. P_0 = the Draco-decoded base positions (what the decoder has);
-//   3. for j = 0..J-1: prediction and frames from P_j only; detail = true odd
-//      position - prediction, in the local frame; the level coder quantizes it
-//      and returns the reconstruction r; P_{j+1} = P_j + (prediction + r in world
-//      coordinates) -- exactly the decoder's computation, so the next level's
-//      details also correct this level's quantization error where it matters.
+// One pass at a given lambda:
+//   1. base chunk: Draco-code the level-0 values (unlifted: base positions; lifted:
+//      the analysed scaling values) at the R-D chosen depth (base_mesh_encoder.h);
+//   2. renumber the semi-regular mesh to the order the chunk decodes to and analyse
+//      it (closed_loop.h AnalyzeAllLevels; cached while the order is unchanged);
+//   3. run the closed loop of closed_loop.h from the Draco-decoded level-0 values,
+//      each level coded by the header's coder (level_encoder.h);
+//   4. header + chunks.
+// Rate control (rate_control.h) repeats passes over lambda codes.
 #include "coding/encoder.h"
 
 #include <cmath>
+#include <deque>
 #include <optional>
 
 #include "coding/base_influence.h"
 #include "coding/base_mesh_encoder.h"
+#include "coding/closed_loop.h"
 #include "coding/decoder.h"
 #include "coding/level_encoder.h"
-#include "coding/level_synthesis.h"
 #include "coding/rate_control.h"
 #include "coding/semi_regular_reorder.h"
 #include "coding/stream_header.h"
@@ -38,6 +39,30 @@ struct Prepared {
   Mesh base;                       // level-0 values to code (input numbering)
   std::vector<uint8_t> kept_bytes;
 };
+
+// Step 2's result for one base order; passes at different lambdas usually share it.
+struct Renumbered {
+  std::vector<uint32_t> decoded_to_input;
+  std::vector<Face> faces;
+  SemiRegularMesh mesh;
+  AnalyzedLevels truth;
+};
+
+StatusOr<const Renumbered*> RenumberCached(const SemiRegularMesh& mesh,
+                                           bitstream::TransformId transform,
+                                           const DracoMeshEncoding& base,
+                                           std::deque<Renumbered>* cache) {
+  for (const Renumbered& r : *cache) {
+    if (r.decoded_to_input == base.decoded_to_input && r.faces == base.decoded.faces) return &r;
+  }
+  Renumbered r;
+  r.decoded_to_input = base.decoded_to_input;
+  r.faces = base.decoded.faces;
+  EQMESH_ASSIGN_OR_RETURN(r.mesh, RenumberToBase(mesh, base.decoded_to_input, base.decoded.faces));
+  r.truth = AnalyzeAllLevels(r.mesh.hierarchy, r.mesh.positions, transform);
+  cache->push_back(std::move(r));
+  return &cache->back();
+}
 
 Status Validate(const SemiRegularMesh& mesh, const EncodeOptions& options) {
   const SemiRegularHierarchy& h = mesh.hierarchy;
@@ -70,7 +95,7 @@ Status Validate(const SemiRegularMesh& mesh, const EncodeOptions& options) {
   return Status::Ok();
 }
 
-StatusOr<Prepared> Prepare(const SemiRegularMesh& mesh) {
+StatusOr<Prepared> Prepare(const SemiRegularMesh& mesh, bitstream::TransformId transform) {
   Prepared p;
   p.mesh = &mesh;
   const double diagonal = BoundingBoxDiagonal(ExtractLevel(mesh, mesh.hierarchy.levels()));
@@ -80,39 +105,18 @@ StatusOr<Prepared> Prepare(const SemiRegularMesh& mesh) {
   }
   p.base_weights = BaseInfluenceWeights(mesh.hierarchy);
   p.base.faces = mesh.hierarchy.BaseFaces();
-  p.base.positions.assign(mesh.positions.begin(),
-                          mesh.positions.begin() + mesh.hierarchy.NumVertices(0));
+  if (transform == bitstream::TransformId::kUnlifted) {
+    p.base.positions.assign(mesh.positions.begin(),
+                            mesh.positions.begin() + mesh.hierarchy.NumVertices(0));
+  } else {
+    p.base.positions = AnalyzeAllLevels(mesh.hierarchy, mesh.positions, transform).values[0];
+  }
   if (!mesh.kept_exactly.faces.empty()) {
     EQMESH_ASSIGN_OR_RETURN(DracoMeshEncoding kept,
                             EncodeMeshWithDraco(mesh.kept_exactly, bitstream::kKeptBits));
     p.kept_bytes = std::move(kept.bytes);
   }
   return p;
-}
-
-// Step 3 of the loop above; appends one chunk per level.
-Status EncodeLevelsUnlifted(const SemiRegularMesh& target, std::vector<Vec3> decoded,
-                            const LevelCodingParams& params, const ProgressFn& progress,
-                            std::vector<std::vector<uint8_t>>* chunks) {
-  const SemiRegularHierarchy& h = target.hierarchy;
-  for (int j = 0; j < h.levels(); ++j) {
-    ReportProgress(progress, "encode level " + std::to_string(j + 1), double(j) / h.levels());
-    const LevelSynthesis step(h, j, bitstream::TransformId::kUnlifted);
-    const std::vector<Vec3> prediction = step.Predict(decoded);
-    const std::vector<LocalFrame> frames = step.Frames(decoded);
-    std::vector<Vec3> local(h.NumOddVertices(j));
-    for (uint32_t k = 0; k < local.size(); ++k) {
-      local[k] = ToLocalFrame(frames[k], target.positions[h.NumVertices(j) + k] - prediction[k]);
-    }
-    std::vector<Vec3> reconstructed;
-    EQMESH_ASSIGN_OR_RETURN(std::vector<uint8_t> chunk,
-                            EncodeLevelCoefficients(params, h, j, local, &reconstructed));
-    chunks->push_back(std::move(chunk));
-    std::vector<Vec3> fine;
-    EQMESH_RETURN_IF_ERROR(step.Synthesize(decoded, frames, reconstructed, &fine));
-    decoded = std::move(fine);
-  }
-  return Status::Ok();
 }
 
 std::vector<uint8_t> Assemble(StreamHeader header, const std::vector<uint8_t>& base,
@@ -142,7 +146,8 @@ struct Pass {
   EncodeReport report;
 };
 
-StatusOr<Pass> EncodeAtCode(const Prepared& prep, const EncodeOptions& options, int64_t code) {
+StatusOr<Pass> EncodeAtCode(const Prepared& prep, const EncodeOptions& options, int64_t code,
+                            std::deque<Renumbered>* cache) {
   const SemiRegularMesh& mesh = *prep.mesh;
   StreamHeader header;
   header.transform = options.transform;
@@ -151,7 +156,7 @@ StatusOr<Pass> EncodeAtCode(const Prepared& prep, const EncodeOptions& options, 
   header.lambda_code = code;
   header.tangential_code = LogCode(options.tangential_factor);
   header.quantum = prep.quantum;
-  const LevelCodingParams params{options.coder, header.lambda(), header.tangential_factor(),
+  const LevelCodingParams params{options.coder, code, header.lambda(), header.tangential_factor(),
                                  static_cast<double>(header.quantum)};
   const double lambda_world = params.lambda / (params.quantum * params.quantum);
 
@@ -159,14 +164,18 @@ StatusOr<Pass> EncodeAtCode(const Prepared& prep, const EncodeOptions& options, 
   BaseRdReport base_report;
   EQMESH_ASSIGN_OR_RETURN(DracoMeshEncoding base,
                           EncodeBaseMesh(prep.base, prep.base_weights, lambda_world, &base_report));
-  EQMESH_ASSIGN_OR_RETURN(SemiRegularMesh target,
-                          RenumberToBase(mesh, base.decoded_to_input, base.decoded.faces));
+  EQMESH_ASSIGN_OR_RETURN(const Renumbered* target,
+                          RenumberCached(mesh, options.transform, base, cache));
+  const SemiRegularHierarchy& h = target->mesh.hierarchy;
+  const LevelCoderFn coder = [&](int j, const std::vector<Vec3>& local,
+                                 std::vector<Vec3>* reconstructed) {
+    return EncodeLevelCoefficients(params, h, j, local, reconstructed);
+  };
   std::vector<std::vector<uint8_t>> chunks;
-  if (options.transform != bitstream::TransformId::kUnlifted) {
-    return UnsupportedFeature("lifted transform not available in this build");
-  }
-  EQMESH_RETURN_IF_ERROR(
-      EncodeLevelsUnlifted(target, base.decoded.positions, params, options.progress, &chunks));
+  EQMESH_RETURN_IF_ERROR(EncodeLevelsClosedLoop(h, options.transform, target->truth,
+                                                base.decoded.positions, coder, options.progress,
+                                                &chunks)
+                             .status());
   pass.bytes = Assemble(header, base.bytes, prep.kept_bytes, chunks, &pass.report);
   pass.report.lambda = params.lambda;
   pass.report.lambda_code = static_cast<int>(code);
@@ -189,12 +198,13 @@ StatusOr<double> MeasurePsnr(const std::vector<uint8_t>& bytes, const Mesh& orig
 #endif
 }
 
-StatusOr<Pass> EncodeWithTarget(const Prepared& prep, const EncodeOptions& options) {
+StatusOr<Pass> EncodeWithTarget(const Prepared& prep, const EncodeOptions& options,
+                                std::deque<Renumbered>* cache) {
   const int64_t start = LogCode(options.lambda);
   // The evaluator keeps the latest pass so the chosen point's report survives.
   std::vector<Pass> passes;
   RateEvaluator eval = [&](int64_t code) -> StatusOr<RatePoint> {
-    EQMESH_ASSIGN_OR_RETURN(Pass pass, EncodeAtCode(prep, options, code));
+    EQMESH_ASSIGN_OR_RETURN(Pass pass, EncodeAtCode(prep, options, code, cache));
     RatePoint point;
     point.lambda_code = code;
     point.bpv = pass.report.bpv;
@@ -227,12 +237,13 @@ StatusOr<Pass> EncodeWithTarget(const Prepared& prep, const EncodeOptions& optio
 StatusOr<std::vector<uint8_t>> Encode(const SemiRegularMesh& mesh, const EncodeOptions& options,
                                       EncodeReport* report) {
   EQMESH_RETURN_IF_ERROR(Validate(mesh, options));
-  EQMESH_ASSIGN_OR_RETURN(Prepared prep, Prepare(mesh));
+  EQMESH_ASSIGN_OR_RETURN(Prepared prep, Prepare(mesh, options.transform));
+  std::deque<Renumbered> cache;
   Pass pass;
   if (options.target_bpv > 0 || options.target_psnr > 0) {
-    EQMESH_ASSIGN_OR_RETURN(pass, EncodeWithTarget(prep, options));
+    EQMESH_ASSIGN_OR_RETURN(pass, EncodeWithTarget(prep, options, &cache));
   } else {
-    EQMESH_ASSIGN_OR_RETURN(pass, EncodeAtCode(prep, options, LogCode(options.lambda)));
+    EQMESH_ASSIGN_OR_RETURN(pass, EncodeAtCode(prep, options, LogCode(options.lambda), &cache));
     pass.report.rate_evaluations = 1;
   }
   if (options.measure_psnr && !pass.report.psnr_measured) {

@@ -5,6 +5,8 @@
 #include <string>
 
 #include "coding/entropy/range_coder.h"
+#include "coding/eq/eq_decoder.h"
+#include "coding/eq/eq_layout.h"
 
 namespace eqmesh {
 namespace {
@@ -50,11 +52,13 @@ StatusOr<std::vector<Vec3>> DecodeUniform(const LevelCodingParams& params, uint3
   return out;
 }
 
-// Adapter to lib/coding/eq (filled in when the EQ level decoder lands).
-StatusOr<std::vector<Vec3>> DecodeEqCoefficients(const LevelCodingParams&,
-                                                 const SemiRegularHierarchy&, int, const uint8_t*,
-                                                 size_t) {
-  return UnsupportedFeature("EQ level decoder not available in this build");
+StatusOr<std::vector<Vec3>> DecodeEqCoefficients(const LevelCodingParams& params,
+                                                 const SemiRegularHierarchy& hierarchy, int j,
+                                                 const uint8_t* data, size_t size) {
+  EQMESH_ASSIGN_OR_RETURN(EqLevelLayout layout, BuildEqLevelLayout(hierarchy, j));
+  auto local = DecodeEqLevel(layout, data, size, params.quantum);
+  if (!local.ok()) return local.status().WithContext("eqm level chunk " + std::to_string(j));
+  return local;
 }
 
 }  // namespace

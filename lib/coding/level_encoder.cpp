@@ -1,10 +1,13 @@
 #include "coding/level_encoder.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdlib>
 
 #include "coding/entropy/range_coder.h"
+#include "coding/eq/eq_encoder.h"
+#include "coding/eq/eq_layout.h"
 
 namespace eqmesh {
 namespace {
@@ -52,10 +55,18 @@ std::vector<uint8_t> EncodeUniform(const LevelCodingParams& params, const std::v
   return rc.Finish();
 }
 
-// Adapter to lib/coding/eq (filled in when the EQ level encoder lands).
-StatusOr<std::vector<uint8_t>> EncodeEq(const LevelCodingParams&, const SemiRegularHierarchy&, int,
-                                        const std::vector<Vec3>&, std::vector<Vec3>*) {
-  return UnsupportedFeature("EQ level encoder not available in this build");
+StatusOr<std::vector<uint8_t>> EncodeEq(const LevelCodingParams& params,
+                                        const SemiRegularHierarchy& hierarchy, int j,
+                                        const std::vector<Vec3>& local,
+                                        std::vector<Vec3>* reconstructed) {
+  EQMESH_ASSIGN_OR_RETURN(EqLevelLayout layout, BuildEqLevelLayout(hierarchy, j));
+  EqEncodeOptions options;
+  // Both codes are 16 log2(lambda q0^2): the header's code is the EQ code.
+  options.lambda_code = static_cast<int32_t>(params.lambda_code);
+  // The EQ coder multiplies lambda by its factor (J = R + lambda D); tangential
+  // errors matter less, so their lambda must be *smaller*: pass the reciprocal.
+  options.tangential_factor = 1.0 / params.tangential_factor;
+  return EncodeEqLevel(layout, local, params.quantum, options, reconstructed);
 }
 
 }  // namespace

@@ -1,11 +1,9 @@
-// One refinement j -> j+1 as both codec sides run it: the frames the level's
-// details are expressed in (computed from decoded level-j values only) and the
-// synthesis of level j+1 from level j and the decoded details.
-//
-// Unlifted (seed paper sec. 5, "unlifted butterfly wavelet"): level j+1 keeps the
-// level-j values and appends odd value = butterfly prediction + detail, the detail
-// given in the odd vertex's frame (lib/wavelet/butterfly.h: normal, tangent,
-// bitangent). Lifted: delegated to lib/wavelet's RefinementStep.
+// One refinement j -> j+1 as the decoder runs it (and the closed-loop encoder
+// mirrors it): the frames of the level's details come from the decoded level-j
+// coarse values only (lib/wavelet/transform.h FramesForLevel), the details are
+// turned to world space and RefinementStep::Synthesize builds level j+1.
+// Unlifted: fine = coarse + (prediction + detail) for the odd vertices (seed paper
+// sec. 5 "unlifted butterfly"); lifted: predict + update lifting step.
 #pragma once
 
 #include <vector>
@@ -13,30 +11,27 @@
 #include "coding/bitstream_shared.h"
 #include "core/status.h"
 #include "mesh/semi_regular.h"
-#include "wavelet/butterfly.h"
+#include "wavelet/transform.h"
 
 namespace eqmesh {
 
-Vec3 ToLocalFrame(const LocalFrame& f, const Vec3& v);
-Vec3 FromLocalFrame(const LocalFrame& f, const Vec3& local);
+WaveletKind ToWaveletKind(bitstream::TransformId transform);
 
 class LevelSynthesis {
  public:
-  LevelSynthesis(const SemiRegularHierarchy& hierarchy, int j, bitstream::TransformId transform);
+  LevelSynthesis(const SemiRegularHierarchy& hierarchy, int j, bitstream::TransformId transform)
+      : step_(hierarchy, j, ToWaveletKind(transform)) {}
 
-  // Butterfly prediction of the odd vertices from level-j values (unlifted meaning).
-  std::vector<Vec3> Predict(const std::vector<Vec3>& coarse) const;
-  // Frames of the odd vertices from level-j values.
-  std::vector<LocalFrame> Frames(const std::vector<Vec3>& coarse) const;
-  // Level j+1 values from level-j values, the frames and the local details.
+  const RefinementStep& step() const { return step_; }
+  std::vector<LocalFrame> Frames(const std::vector<Vec3>& coarse) const {
+    return FramesForLevel(step_, coarse);
+  }
+  // Level j+1 values from level-j coarse values, the frames and the local details.
   Status Synthesize(const std::vector<Vec3>& coarse, const std::vector<LocalFrame>& frames,
                     const std::vector<Vec3>& local, std::vector<Vec3>* fine) const;
 
  private:
-  const SemiRegularHierarchy* hierarchy_;
-  int j_;
-  bitstream::TransformId transform_;
-  StencilTable stencils_;
+  RefinementStep step_;
 };
 
 }  // namespace eqmesh

@@ -8,9 +8,9 @@
 namespace eqmesh {
 namespace {
 
-constexpr int64_t kBracketStep = 64;  // one octave of lambda
+constexpr int64_t kBracketStep = 16;  // one octave of lambda
 constexpr int kMaxEvaluations = 40;
-constexpr int64_t kQualityResolution = 4;  // codes: ~4 % of lambda
+constexpr int64_t kQualityResolution = 1;  // one code: ~4.4 % of lambda
 
 // Evaluates codes, counting and clamping them to the header's range.
 class Prober {

@@ -104,6 +104,28 @@ void FinishComponents(const MeshTopology& topo, MeshDiagnosis* d) {
   }
 }
 
+// Components when faces touching at a vertex also count as connected: what a
+// "pieces" count of a viewer shows, and what MANIFEST.md reports.
+size_t CountVertexConnectedComponents(const MeshTopology& topo) {
+  std::vector<uint32_t> parent(topo.num_components());
+  std::iota(parent.begin(), parent.end(), 0u);
+  auto find = [&parent](uint32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  size_t count = topo.num_components();
+  for (uint32_t v = 0; v < topo.num_vertices(); ++v) {
+    const IndexRange star = topo.VertexFaces(v);
+    for (size_t i = 1; i < star.size(); ++i) {
+      const uint32_t a = find(topo.FaceComponents()[star[0]]), b = find(topo.FaceComponents()[star[i]]);
+      if (a == b) continue;
+      parent[std::max(a, b)] = std::min(a, b);
+      --count;
+    }
+  }
+  return count;
+}
+
 }  // namespace
 
 bool IsDegenerateFace(const Mesh& mesh, const Face& f, double area_tolerance) {
@@ -149,6 +171,7 @@ MeshDiagnosis Diagnose(const Mesh& mesh, const MeshTopology& topology, const Dia
   d.faces = mesh.faces.size();
   d.referenced_vertices = CountReferencedVertices(mesh);
   d.components = topology.num_components();
+  d.vertex_connected_components = CountVertexConnectedComponents(topology);
   d.component_details.assign(d.components, ComponentDiagnosis{});
   CountFaces(mesh, options, &d);
   CountEdges(topology, &d);

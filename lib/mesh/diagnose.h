@@ -49,6 +49,7 @@ struct MeshDiagnosis {
   size_t non_manifold_vertices = 0;  // star in > 1 fan ("pinched")
   size_t inconsistent_edges = 0;     // two faces traversing it the same way
   size_t components = 0;             // face-connected through edges
+  size_t vertex_connected_components = 0;  // faces joined through shared vertices too
   size_t closed_components = 0;
   std::vector<int64_t> closed_genus;  // one per closed component, in component order
   std::vector<ComponentDiagnosis> component_details;  // indexed like FaceComponents()

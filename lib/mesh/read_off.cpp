@@ -24,11 +24,11 @@ class OffLines {
       ++line_;
       const char* eol = static_cast<const char*>(std::memchr(p_, '\n', static_cast<size_t>(end_ - p_)));
       if (eol == nullptr) eol = end_;
-      const char* b = SkipBlanks(p_, eol);
-      const char* hash = static_cast<const char*>(std::memchr(b, '#', static_cast<size_t>(eol - b)));
-      p_ = eol + (eol < end_ ? 1 : 0);
+      const char* hash = static_cast<const char*>(std::memchr(p_, '#', static_cast<size_t>(eol - p_)));
       const char* e = hash ? hash : eol;
-      if (SkipBlanks(b, e) == e) continue;
+      const char* b = SkipBlanks(p_, e);
+      p_ = eol + (eol < end_ ? 1 : 0);
+      if (b == e) continue;
       *begin = b;
       *end = e;
       return true;

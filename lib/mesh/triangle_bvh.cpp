@@ -68,7 +68,7 @@ struct BuildTask {
 
 struct Split {
   int axis = -1;
-  double position = 0.0;  // centroid coordinate; prims with centroid < position go left
+  int bin = 0;  // prims whose centroid falls in a bin < this go left
 };
 
 double SquaredDistanceToBox(const Vec3& p, const Vec3& lo, const Vec3& hi) {
@@ -125,7 +125,7 @@ Split FindSahSplit(const std::vector<BuildPrim>& prims, const std::vector<uint32
       if (cost < best_cost) {
         best_cost = cost;
         best.axis = axis;
-        best.position = lo + b / inv_width;
+        best.bin = b;
       }
     }
   }
@@ -140,12 +140,11 @@ uint32_t Partition(const std::vector<BuildPrim>& prims, std::vector<uint32_t>* o
   if (split.axis >= 0) {
     const double inv_width =
         kNumBins / (centroid_box.hi[split.axis] - centroid_box.lo[split.axis]);
-    const int split_bin = BinOf(split.position, centroid_box.lo[split.axis], inv_width);
     // Partition by bin index (not by coordinate) so it agrees exactly with the binning.
     auto mid = std::partition(order->begin() + task.begin, order->begin() + task.end,
                               [&](uint32_t i) {
                                 return BinOf(prims[i].centroid[split.axis],
-                                             centroid_box.lo[split.axis], inv_width) < split_bin;
+                                             centroid_box.lo[split.axis], inv_width) < split.bin;
                               });
     const auto m = static_cast<uint32_t>(mid - order->begin());
     if (m > task.begin && m < task.end) return m;

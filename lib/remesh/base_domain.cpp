@@ -3,6 +3,7 @@
 #include "remesh/base_domain.h"
 
 #include <algorithm>
+#include <Eigen/Geometry>
 #include <cmath>
 #include <queue>
 

@@ -2,6 +2,7 @@
 #include "remesh/piercing.h"
 
 #include <algorithm>
+#include <Eigen/Geometry>
 #include <cmath>
 #include <mutex>
 

@@ -142,7 +142,7 @@ bool StopRefining(const RemeshOptions& options, int levels_done, const std::vect
                   uint64_t next_vertices, size_t input_vertices) {
   if (options.levels >= 0) return levels_done >= options.levels;
   if (levels_done >= kMaxLevels) return true;
-  if (next_vertices > kAutoMaxVertexFactor * static_cast<double>(input_vertices)) return true;
+  if (static_cast<double>(next_vertices) > kAutoMaxVertexFactor * static_cast<double>(input_vertices)) return true;
   if (psnr.empty()) return false;
   if (psnr.back() >= kAutoTargetPsnrDb) return true;
   return psnr.size() >= 3 && psnr.back() - psnr[psnr.size() - 2] < kAutoMinGainDb;
@@ -209,7 +209,8 @@ StatusOr<SemiRegularMesh> Remesh(const Mesh& input, const RemeshOptions& options
     normal += stats.normal;
     non_normal += stats.non_normal;
     const size_t pierced = stats.normal + stats.non_normal;
-    report.normal_fraction_per_level.push_back(pierced ? static_cast<double>(stats.normal) / pierced : 1.0);
+    report.normal_fraction_per_level.push_back(
+        pierced ? static_cast<double>(stats.normal) / static_cast<double>(pierced) : 1.0);
     report.estimated_psnr_db_per_level.push_back(PsnrDb(diagonal, stats.rms_error));
     ++levels;
   }
@@ -220,7 +221,8 @@ StatusOr<SemiRegularMesh> Remesh(const Mesh& input, const RemeshOptions& options
   out.positions = std::move(positions);
   out.kinds = std::move(kinds);
   report.levels = levels;
-  report.normal_fraction = normal + non_normal ? static_cast<double>(normal) / (normal + non_normal) : 1.0;
+  report.normal_fraction =
+      normal + non_normal ? static_cast<double>(normal) / static_cast<double>(normal + non_normal) : 1.0;
   report.output_vertices = out.positions.size() + out.kept_exactly.positions.size();
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;

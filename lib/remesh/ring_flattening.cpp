@@ -2,6 +2,7 @@
 #include "remesh/ring_flattening.h"
 
 #include <algorithm>
+#include <Eigen/Geometry>
 #include <cmath>
 
 namespace eqmesh {

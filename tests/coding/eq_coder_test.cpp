@@ -1,1 +1,291 @@
+#include <gtest/gtest.h>
 
+#include <cmath>
+#include <random>
+#include <set>
+
+#include "coding/eq/eq_decoder.h"
+#include "coding/eq/eq_encoder.h"
+#include "coding/eq/eq_layout.h"
+#include "coding/eq/eq_model.h"
+#include "test_support.h"
+
+namespace eqmesh {
+namespace {
+
+SemiRegularHierarchy IcoHierarchy(int levels) {
+  const Mesh ico = testing::MakeIcosphere(0);
+  auto h = SemiRegularHierarchy::Build(static_cast<uint32_t>(ico.num_vertices()), ico.faces, levels);
+  EXPECT_TRUE(h.ok()) << h.status().ToString();
+  return std::move(h).value();
+}
+
+// Positions of every hierarchy vertex on the unit sphere (midpoints pushed out).
+std::vector<Vec3> SpherePositions(const SemiRegularHierarchy& h) {
+  std::vector<Vec3> p = testing::MakeIcosphere(0).positions;
+  for (int j = 0; j < h.levels(); ++j) {
+    for (uint32_t k = 0; k < h.NumOddVertices(j); ++k) {
+      const Edge& e = h.OddEdge(j, k);
+      p.push_back((p[e[0]] + p[e[1]]).normalized());
+    }
+  }
+  return p;
+}
+
+// Synthetic wavelet coefficients of level j: Laplacian noise whose sigma varies
+// smoothly over the sphere (large near +z, tiny near -z) and halves per level;
+// tangential components 10x smaller.
+std::vector<Vec3> SyntheticCoefficients(const SemiRegularHierarchy& h, int j, uint32_t seed) {
+  const std::vector<Vec3> p = SpherePositions(h);
+  std::mt19937 rng(seed);
+  std::exponential_distribution<double> expo(1.0);
+  auto laplace = [&]() { return (rng() & 1 ? 1.0 : -1.0) * expo(rng) / std::sqrt(2.0); };
+  std::vector<Vec3> c(h.NumOddVertices(j));
+  for (uint32_t k = 0; k < c.size(); ++k) {
+    const Vec3& x = p[h.NumVertices(j) + k];
+    const double sigma = std::ldexp(0.02, -j) * std::exp(2.5 * x.z() + std::sin(4 * x.x()));
+    c[k] = Vec3(sigma * laplace(), 0.1 * sigma * laplace(), 0.1 * sigma * laplace());
+  }
+  return c;
+}
+
+constexpr double kQ0 = 1.0 / (1 << 24);
+
+double Mse(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+  double s = 0;
+  for (size_t k = 0; k < a.size(); ++k) s += (a[k] - b[k]).squaredNorm();
+  return s / static_cast<double>(a.size());
+}
+
+TEST(EqLayout, ScanIsPermutationWithCausalNeighbourhoods) {
+  const SemiRegularHierarchy h = IcoHierarchy(4);
+  for (int j = 0; j < 4; ++j) {
+    auto layout = BuildEqLevelLayout(h, j);
+    ASSERT_TRUE(layout.ok()) << layout.status().ToString();
+    const EqLevelLayout& l = *layout;
+    ASSERT_EQ(l.size(), h.NumOddVertices(j));
+    std::set<uint32_t> seen(l.scan.begin(), l.scan.end());
+    EXPECT_EQ(seen.size(), l.size());
+    // Ring-1 neighbours are edges of the level j+1 mesh.
+    std::set<std::pair<uint32_t, uint32_t>> edges;
+    for (const Face& f : h.Faces(j + 1))
+      for (int a = 0; a < 3; ++a) edges.insert({f[a], f[(a + 1) % 3]});
+    size_t with_neighbours = 0;
+    for (uint32_t i = 0; i < l.size(); ++i) {
+      bool any = false;
+      for (uint32_t e = l.offsets[i]; e < l.offsets[i + 1]; ++e) {
+        ASSERT_LT(l.neighbours[e], i);
+        ASSERT_GE(l.ring[e], 1);
+        ASSERT_LE(l.ring[e], 3);
+        any = true;
+        if (l.ring[e] == 1) {
+          const uint32_t a = l.first_vertex + l.scan[i], b = l.first_vertex + l.scan[l.neighbours[e]];
+          EXPECT_TRUE(edges.count({a, b}) || edges.count({b, a}));
+        }
+      }
+      with_neighbours += any;
+    }
+    EXPECT_EQ(with_neighbours, l.size() - 1) << "only the very first vertex lacks a causal neighbour";
+    if (j >= 2) {
+      // Interior vertices see a good part of their (up to ~30) three-ring neighbours.
+      const double mean = static_cast<double>(l.neighbours.size()) / static_cast<double>(l.size());
+      EXPECT_GT(mean, 8.0);
+    }
+  }
+}
+
+TEST(EqLayout, BaseTrianglesAreScannedInOrderAndBoundaryMeshesWork) {
+  const Mesh disc = testing::MakeDisc(2);
+  auto h = SemiRegularHierarchy::Build(static_cast<uint32_t>(disc.num_vertices()), disc.faces, 3);
+  ASSERT_TRUE(h.ok());
+  for (int j = 0; j < 3; ++j) {
+    auto layout = BuildEqLevelLayout(*h, j);
+    ASSERT_TRUE(layout.ok()) << layout.status().ToString();
+    EXPECT_EQ(layout->size(), h->NumOddVertices(j));
+  }
+  EXPECT_FALSE(BuildEqLevelLayout(*h, 3).ok());
+  EXPECT_FALSE(BuildEqLevelLayout(*h, -1).ok());
+}
+
+TEST(EqModel, IntegerLogIsExact) {
+  EXPECT_EQ(Log2Sixteenths(1), 0);
+  EXPECT_EQ(Log2Sixteenths(2), 16);
+  EXPECT_EQ(Log2Sixteenths(3), 25);  // 16 log2 3 = 25.36
+  EXPECT_EQ(Log2Sixteenths(1ull << 40), 640);
+  EXPECT_EQ(Log2Sixteenths((1ull << 40) - 1), 639);
+  EXPECT_EQ(Log2Sixteenths(static_cast<EqUint128>(1) << 100), 1600);
+  for (uint64_t x = 1; x < 5000; ++x) {
+    EXPECT_EQ(Log2Sixteenths(x), static_cast<int32_t>(std::floor(16 * std::log2(static_cast<double>(x)) + 1e-12)))
+        << x;
+  }
+}
+
+struct Coded {
+  std::vector<uint8_t> bytes;
+  std::vector<Vec3> recon;
+  EqEncodeStats stats;
+};
+
+Coded EncodeOrDie(const EqLevelLayout& layout, const std::vector<Vec3>& c, int32_t lambda_code) {
+  EqEncodeOptions opt;
+  opt.lambda_code = lambda_code;
+  Coded out;
+  auto bytes = EncodeEqLevel(layout, c, kQ0, opt, &out.recon, &out.stats);
+  EXPECT_TRUE(bytes.ok()) << bytes.status().ToString();
+  out.bytes = std::move(bytes).value();
+  return out;
+}
+
+// lambda code for "distortion weighted so that the step is about `step` world units".
+int32_t LambdaForStep(double step) { return EqLambdaCode(8.66 / (step * step), kQ0); }
+
+TEST(EqCoder, RoundTripIsExactAndDeterministic) {
+  const SemiRegularHierarchy h = IcoHierarchy(4);
+  for (int j : {0, 2, 3}) {
+    auto layout = BuildEqLevelLayout(h, j);
+    ASSERT_TRUE(layout.ok());
+    const std::vector<Vec3> c = SyntheticCoefficients(h, j, 11u + static_cast<uint32_t>(j));
+    for (double step : {1e-2, 1e-3, 1e-4, 1e-5}) {
+      const Coded a = EncodeOrDie(*layout, c, LambdaForStep(step));
+      const Coded b = EncodeOrDie(*layout, c, LambdaForStep(step));
+      EXPECT_EQ(a.bytes, b.bytes);
+      auto decoded = DecodeEqLevel(*layout, a.bytes.data(), a.bytes.size(), kQ0);
+      ASSERT_TRUE(decoded.ok()) << decoded.status().ToString();
+      ASSERT_EQ(decoded->size(), c.size());
+      for (size_t k = 0; k < c.size(); ++k) {
+        ASSERT_EQ((*decoded)[k], a.recon[k]) << "level " << j << " step " << step << " vertex " << k;
+      }
+    }
+  }
+}
+
+// Each reconstruction lies within (dead zone + 2 steps) sigma of the input for the
+// quantizer the decoder itself selects (the R-D choice may move one bin down).
+TEST(EqCoder, ReconstructionErrorWithinQuantizerBound) {
+  const SemiRegularHierarchy h = IcoHierarchy(4);
+  auto layout = BuildEqLevelLayout(h, 3);
+  ASSERT_TRUE(layout.ok());
+  const EqLevelLayout& l = *layout;
+  const std::vector<Vec3> c = SyntheticCoefficients(h, 3, 5);
+  for (double step : {1e-3, 1e-4, 1e-5}) {
+    const Coded a = EncodeOrDie(l, c, LambdaForStep(step));
+    std::vector<int64_t> recon_scan(l.size());
+    for (size_t i = 0; i < l.size(); ++i) recon_scan[i] = std::llround(a.recon[l.scan[i]][0] / kQ0);
+    const EqQuantizer tq = TangentialQuantizer(a.stats.side);
+    for (size_t i = 0; i < l.size(); ++i) {
+      const uint32_t b = l.offsets[i];
+      const EqNormalChoice choice = ChooseNormalQuantizer(a.stats.side, recon_scan.data(), &l.neighbours[b],
+                                                          &l.ring[b], l.offsets[i + 1] - b);
+      const uint32_t k = l.scan[i];
+      for (int comp = 0; comp < 3; ++comp) {
+        const EqQuantizer& q = comp == 0 ? choice.quantizer : tq;
+        const double x = c[k][comp], r = a.recon[k][comp];
+        if (q.codes_nothing()) {
+          EXPECT_EQ(r, 0.0);
+          continue;
+        }
+        const double sigma = static_cast<double>(q.sigma_q16) / 65536.0 * kQ0;
+        const double bound = (q.entry->dead_zone_q16 + 2.0 * q.entry->step_q16) / 65536.0 * sigma + kQ0;
+        EXPECT_LE(std::fabs(x - r), bound) << "vertex " << k << " component " << comp;
+      }
+    }
+  }
+}
+
+TEST(EqCoder, RateFallsAndDistortionRisesAsLambdaFalls) {
+  const SemiRegularHierarchy h = IcoHierarchy(5);
+  auto layout = BuildEqLevelLayout(h, 4);
+  ASSERT_TRUE(layout.ok());
+  const std::vector<Vec3> c = SyntheticCoefficients(h, 4, 9);
+  size_t prev_bytes = SIZE_MAX;
+  double prev_mse = -1;
+  for (int32_t code = LambdaForStep(1e-6); code >= LambdaForStep(1e-2); code -= 16) {
+    const Coded a = EncodeOrDie(*layout, c, code);
+    const double mse = Mse(a.recon, c);
+    EXPECT_LE(a.bytes.size(), prev_bytes) << "lambda code " << code;
+    EXPECT_GE(mse, prev_mse) << "lambda code " << code;
+    prev_bytes = a.bytes.size();
+    prev_mse = mse;
+  }
+}
+
+TEST(EqCoder, UnpredictableSetConverges) {
+  const SemiRegularHierarchy h = IcoHierarchy(5);
+  for (int j : {2, 4}) {
+    auto layout = BuildEqLevelLayout(h, j);
+    ASSERT_TRUE(layout.ok());
+    const std::vector<Vec3> c = SyntheticCoefficients(h, j, 21);
+    for (double step : {1e-2, 1e-3, 1e-4}) {
+      const Coded a = EncodeOrDie(*layout, c, LambdaForStep(step));
+      EXPECT_TRUE(a.stats.converged) << "level " << j << " step " << step;
+      EXPECT_LE(a.stats.iterations, 8);
+      EXPECT_LT(a.stats.unpredictable, layout->size());
+    }
+  }
+}
+
+TEST(EqCoder, ZeroAndTinyFieldsCostAlmostNothing) {
+  const SemiRegularHierarchy h = IcoHierarchy(3);
+  auto layout = BuildEqLevelLayout(h, 2);
+  ASSERT_TRUE(layout.ok());
+  const std::vector<Vec3> zero(layout->size(), Vec3::Zero());
+  const Coded a = EncodeOrDie(*layout, zero, LambdaForStep(1e-3));
+  EXPECT_LT(a.bytes.size(), 24u);
+  auto d = DecodeEqLevel(*layout, a.bytes.data(), a.bytes.size(), kQ0);
+  ASSERT_TRUE(d.ok());
+  for (const Vec3& v : *d) EXPECT_EQ(v, Vec3::Zero());
+}
+
+TEST(EqCoder, RejectsBadInputs) {
+  const SemiRegularHierarchy h = IcoHierarchy(2);
+  auto layout = BuildEqLevelLayout(h, 1);
+  ASSERT_TRUE(layout.ok());
+  std::vector<Vec3> c(layout->size(), Vec3::Zero());
+  EqEncodeOptions opt;
+  EXPECT_FALSE(EncodeEqLevel(*layout, std::vector<Vec3>(3), kQ0, opt, nullptr).ok());
+  EXPECT_FALSE(EncodeEqLevel(*layout, c, 0.0, opt, nullptr).ok());
+  c[3] = Vec3(NAN, 0, 0);
+  EXPECT_FALSE(EncodeEqLevel(*layout, c, kQ0, opt, nullptr).ok());
+  c[3] = Vec3(1e9, 0, 0);  // 2^27 quanta exceeded
+  EXPECT_EQ(EncodeEqLevel(*layout, c, kQ0, opt, nullptr).status().code(), StatusCode::kInvalidArgument);
+}
+
+TEST(EqDecoder, EveryTruncatedPrefixIsRejected) {
+  const SemiRegularHierarchy h = IcoHierarchy(4);
+  auto layout = BuildEqLevelLayout(h, 3);
+  ASSERT_TRUE(layout.ok());
+  const Coded a = EncodeOrDie(*layout, SyntheticCoefficients(h, 3, 3), LambdaForStep(1e-4));
+  ASSERT_GT(a.bytes.size(), 100u);
+  for (size_t len = 0; len < a.bytes.size(); ++len) {
+    auto d = DecodeEqLevel(*layout, a.bytes.data(), len, kQ0);
+    ASSERT_FALSE(d.ok()) << "prefix " << len << " of " << a.bytes.size();
+    EXPECT_EQ(d.status().code(), StatusCode::kCorruptStream);
+  }
+}
+
+TEST(EqDecoder, GarbageAndBitFlipsNeverCrash) {
+  const SemiRegularHierarchy h = IcoHierarchy(4);
+  auto layout = BuildEqLevelLayout(h, 3);
+  ASSERT_TRUE(layout.ok());
+  const Coded a = EncodeOrDie(*layout, SyntheticCoefficients(h, 3, 4), LambdaForStep(1e-4));
+  std::mt19937 rng(99);
+  for (int trial = 0; trial < 300; ++trial) {
+    std::vector<uint8_t> bytes;
+    if (trial % 2 == 0) {
+      bytes.resize(rng() % 4096);
+      for (uint8_t& b : bytes) b = static_cast<uint8_t>(rng());
+    } else {
+      bytes = a.bytes;
+      for (int f = 0; f < 1 + trial % 5; ++f) bytes[rng() % bytes.size()] ^= static_cast<uint8_t>(1u << (rng() % 8));
+    }
+    auto d = DecodeEqLevel(*layout, bytes.data(), bytes.size(), kQ0);
+    if (d.ok()) {
+      ASSERT_EQ(d->size(), layout->size());
+      for (const Vec3& v : *d) ASSERT_LE(v.cwiseAbs().maxCoeff(), static_cast<double>(kEqMaxCoefficient) * kQ0);
+    }
+  }
+  EXPECT_FALSE(DecodeEqLevel(*layout, nullptr, 0, kQ0).ok());
+}
+
+}  // namespace
+}  // namespace eqmesh

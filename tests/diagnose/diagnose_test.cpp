@@ -56,6 +56,7 @@ TEST(Diagnose, PinchedVertexIsOneNonManifoldVertex) {
   EXPECT_EQ(d.non_manifold_edges, 0u);
   EXPECT_EQ(d.boundary_edges, 0u);
   EXPECT_EQ(d.components, 2u);
+  EXPECT_EQ(d.vertex_connected_components, 1u);
   EXPECT_EQ(d.closed_components, 2u);
   // Pinched vertices count once per fan, so both tetrahedra read genus 0.
   EXPECT_EQ(d.closed_genus, (std::vector<int64_t>{0, 0}));

@@ -21,7 +21,9 @@ void ExpectReadError(const std::string& file_name, const std::vector<uint8_t>& b
   auto m = ReadMesh(path);
   ASSERT_FALSE(m.ok()) << file_name << " was accepted";
   EXPECT_NE(m.status().message().find(path), std::string::npos) << m.status().message();
-  if (!expect.empty()) EXPECT_NE(m.status().message().find(expect), std::string::npos) << m.status().message();
+  if (!expect.empty()) {
+    EXPECT_NE(m.status().message().find(expect), std::string::npos) << m.status().message();
+  }
   EXPECT_EQ(m.status().message().find('\n'), std::string::npos) << "multi-line: " << m.status().message();
   std::remove(path.c_str());
 }
@@ -82,7 +84,7 @@ TEST(BadInput, LyingElementCountsFailBeforeAllocating) {
                   "1000000000000 'vertex' elements");
   ExpectReadError("lie_ascii.ply",
                   "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-                  "element face 4000000000\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n",
+                  "element face 4000000000\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n",
                   "'face' elements");
   ExpectReadError("lie.off", "OFF\n1000000000000 1 0\n0 0 0\n", "header declares");
   // Counts that overflow 64-bit arithmetic.
@@ -94,7 +96,7 @@ TEST(BadInput, LyingElementCountsFailBeforeAllocating) {
       "property float z\nelement face 1\nproperty list uint int vertex_indices\nend_header\n";
   std::vector<uint8_t> bytes = ToBytes(ply);
   bytes.resize(bytes.size() + 36, 0);
-  for (uint8_t b : {0xff, 0xff, 0xff, 0x7f}) bytes.push_back(b);
+  testing::AppendScalar<uint32_t>(&bytes, 0x7fffffffu, false);
   ExpectReadError("list.ply", bytes, "truncated");
 }
 
@@ -167,7 +169,9 @@ TEST(BadInput, RandomMutationsNeverCrash) {
       std::vector<uint8_t> bytes = ToBytes(text);
       for (int k = 0; k < 3; ++k) bytes[rng() % bytes.size()] = static_cast<uint8_t>(rng());
       auto m = ReadMeshFromBytes(bytes, format, "mutant." + format);
-      if (!m.ok()) EXPECT_NE(m.status().message().find("mutant"), std::string::npos);
+      if (!m.ok()) {
+        EXPECT_NE(m.status().message().find("mutant"), std::string::npos);
+      }
     }
   }
 }

@@ -27,7 +27,7 @@ std::string Base64(const std::vector<uint8_t>& in) {
 std::vector<uint8_t> TriangleBuffer() {
   std::vector<uint8_t> b;
   for (float f : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f}) testing::AppendScalar(&b, f, false);
-  for (uint16_t i : {0, 1, 2, 0}) testing::AppendScalar(&b, i, false);
+  for (int i : {0, 1, 2, 0}) testing::AppendScalar(&b, static_cast<uint16_t>(i), false);
   return b;
 }
 
@@ -102,9 +102,10 @@ TEST(ReadGltf, HugeAccessorOffsetIsAnError) {
 
 TEST(ReadGltf, IndexOutOfRangeIsAnError) {
   std::string json = Gltf(kScene, kGoodAccessors);
-  // Same file, but the index accessor reads position bytes as indices (large values).
+  // Same file, but the index accessor reads the float 1.0 of vertex 1 as uint16
+  // indices 0, 16256, 0.
   const std::string from = "{\"bufferView\":1,\"componentType\":5123";
-  json.replace(json.find(from), from.size(), "{\"bufferView\":0,\"componentType\":5123");
+  json.replace(json.find(from), from.size(), "{\"bufferView\":0,\"byteOffset\":12,\"componentType\":5123");
   auto m = ReadMeshFromBytes(testing::ToBytes(json), "gltf", "index.gltf");
   ASSERT_FALSE(m.ok());
   EXPECT_NE(m.status().message().find("out of range"), std::string::npos) << m.status().message();

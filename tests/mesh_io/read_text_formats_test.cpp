@@ -141,7 +141,7 @@ std::vector<uint8_t> AwkwardPly(const std::string& format) {
     AppendScalar<float>(&out, 0.5f, be);
   }
   AppendScalar<uint16_t>(&out, 3, be);
-  for (int8_t j : {-1, -2, -3}) AppendScalar<int8_t>(&out, j, be);
+  for (int j : {-1, -2, -3}) AppendScalar<int8_t>(&out, static_cast<int8_t>(j), be);
   return out;
 }
 
@@ -172,7 +172,9 @@ TEST_P(PlyEncodings, TruncationIsAnErrorAtEveryLength) {
     std::vector<uint8_t> part(full.begin(), full.begin() + static_cast<ptrdiff_t>(cut));
     auto m = ReadMeshFromBytes(part, "ply", "cut.ply");
     EXPECT_FALSE(m.ok()) << "cut at " << cut << " of " << full.size();
-    if (!m.ok()) EXPECT_NE(m.status().message().find("cut.ply"), std::string::npos);
+    if (!m.ok()) {
+      EXPECT_NE(m.status().message().find("cut.ply"), std::string::npos);
+    }
   }
 }
 
@@ -180,8 +182,6 @@ INSTANTIATE_TEST_SUITE_P(AllThree, PlyEncodings,
                          ::testing::Values("ascii", "binary_little_endian", "binary_big_endian"));
 
 TEST(ReadPly, TriStripsAlternateWindingAndSkipDegenerates) {
-  // Strip 0 1 2 3 4 2 2 5 -1 6 7 8: triangles (0,1,2) (2,1,3) (2,3,4) (4,3,2)
-  // (3,4,2)->... built by hand below; repeated corners make degenerate stitches.
   std::string ply =
       "ply\nformat ascii 1.0\nelement vertex 9\nproperty float x\nproperty float y\nproperty float z\n"
       "element tristrips 1\nproperty list int int vertex_indices\nend_header\n";
@@ -191,7 +191,8 @@ TEST(ReadPly, TriStripsAlternateWindingAndSkipDegenerates) {
   ASSERT_TRUE(m.ok()) << m.status().ToString();
   // Strip A = 0 1 2 3 3 4: k=0 (0,1,2); k=1 (2,1,3); k=2 (2,3,3) degenerate;
   // k=3 (3,3,4) degenerate. Strip B = 6 7 8: (6,7,8). Strip C = 5: nothing.
-  ExpectFaces(*m, {{0, 1, 2}, {2, 1, 3}, {6, 7, 8}});
+  // Vertices 4 and 5 end up unused, so 6 7 8 become 4 5 6.
+  ExpectFaces(*m, {{0, 1, 2}, {2, 1, 3}, {4, 5, 6}});
 }
 
 TEST(ReadPly, FaceListNamedVertexIndexAndSizedTypeNames) {

@@ -60,8 +60,8 @@ INSTANTIATE_TEST_SUITE_P(Formats, RoundTrip,
                          ::testing::Values(Case{"obj", false, 0.0}, Case{"off", false, 0.0},
                                            Case{"ply", true, 0.0}, Case{"ply", false, 6e-8},
                                            Case{"glb", false, 6e-8}),
-                         [](const ::testing::TestParamInfo<Case>& info) {
-                           return std::string(info.param.extension) + (info.param.ply_double ? "_double" : "");
+                         [](const ::testing::TestParamInfo<Case>& param_info) {
+                           return std::string(param_info.param.extension) + (param_info.param.ply_double ? "_double" : "");
                          });
 
 TEST(WriteGlb, LayoutFollowsTheGlbContainerRules) {

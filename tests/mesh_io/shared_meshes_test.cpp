@@ -45,8 +45,8 @@ INSTANTIATE_TEST_SUITE_P(
                       Expected{"meshes/bench/stanford-bunny.obj", 34834, 69451, 1113, "obj"},
                       Expected{"meshes/bench/igea.ply", 134345, 268686, 0, "ply"},
                       Expected{"meshes/bench/horse.ply", 48485, 96966, 0, "ply"}),
-    [](const ::testing::TestParamInfo<Expected>& info) {
-      std::string name = info.param.path;
+    [](const ::testing::TestParamInfo<Expected>& param_info) {
+      std::string name = param_info.param.path;
       name = name.substr(name.find_last_of('/') + 1);
       std::replace_if(name.begin(), name.end(), [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); }, '_');
       return name;

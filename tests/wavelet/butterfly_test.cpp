@@ -256,6 +256,48 @@ TEST(Butterfly, ReproducesLinearFunctionsOnRegularGrid) {
   for (size_t k = 0; k < p0.size(); ++k) EXPECT_LT((a * p0[k] + shift - p1[k]).norm(), 1e-12);
 }
 
+// n x n lattice of unit squares split along one diagonal: interior vertices have
+// valence 6, and edges near the border need ghost wings.
+Mesh MakeGrid(uint32_t n) {
+  Mesh m;
+  for (uint32_t y = 0; y <= n; ++y)
+    for (uint32_t x = 0; x <= n; ++x) m.positions.emplace_back(x + 0.5 * y, 0.8 * y, 0.0);
+  auto id = [n](uint32_t x, uint32_t y) { return y * (n + 1) + x; };
+  for (uint32_t y = 0; y < n; ++y) {
+    for (uint32_t x = 0; x < n; ++x) {
+      m.faces.push_back({id(x, y), id(x + 1, y), id(x, y + 1)});
+      m.faces.push_back({id(x + 1, y), id(x + 1, y + 1), id(x, y + 1)});
+    }
+  }
+  return m;
+}
+
+TEST(Butterfly, GhostWingsKeepLinearPrecisionNearTheBoundary) {
+  const Mesh grid = MakeGrid(5);
+  const SemiRegularHierarchy h = Build(grid, 1);
+  const StencilTable t = BuildButterflyStencils(h, 0);
+  std::vector<Vec3> predicted;
+  ApplyStencils(t, grid.positions, &predicted);
+  std::map<std::pair<uint32_t, uint32_t>, int> faces_on_edge;
+  for (const Face& f : grid.faces)
+    for (int i = 0; i < 3; ++i)
+      faces_on_edge[std::minmax(f[i], f[(i + 1) % 3])]++;
+  int ghosts = 0, interior = 0;
+  for (uint32_t k = 0; k < t.size(); ++k) {
+    const Edge& e = h.OddEdge(0, k);
+    if (faces_on_edge[std::minmax(e[0], e[1])] != 2) continue;  // 4-point rule, inexact at corners
+    ++interior;
+    const Vec3 mid = 0.5 * (grid.positions[e[0]] + grid.positions[e[1]]);
+    EXPECT_LT((predicted[k] - mid).norm(), 1e-14) << k;
+    // Ghosts fold into the weights of vertices already in the stencil.
+    bool plain = true;
+    for (const auto& [v, w] : StencilOf(t, k)) plain = plain && (w == 0.5 || w == 0.125 || w == -0.0625);
+    ghosts += !plain;
+  }
+  EXPECT_GT(interior, 0);
+  EXPECT_GT(ghosts, 0);
+}
+
 TEST(Butterfly, FramesAreOrthonormalAndFollowTheSurface) {
   const Mesh sphere = testing::MakeIcosphere(1);
   const SemiRegularHierarchy h = Build(sphere, 1);

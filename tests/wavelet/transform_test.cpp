@@ -146,7 +146,7 @@ TEST(WaveletTransform, RejectsMismatchedCoefficients) {
 }
 
 TEST(WaveletTransform, UpdateWeightsFollowFaceCounts) {
-  // Level 1 of a bipyramid-free case: icosahedron level 1 has valence 5 (base) and 6 (odd).
+  // Icosahedron level 1: base vertices have valence 5, the others 6.
   const SemiRegularHierarchy h = Build(testing::MakeIcosphere(0), 2);
   const RefinementStep step(h, 1, WaveletKind::kLifted);
   const StencilTable& u = step.update();
@@ -166,10 +166,10 @@ TEST(WaveletTransform, UpdateWeightsFollowFaceCounts) {
   EXPECT_TRUE(unlifted.update().weights.empty());
 }
 
-TEST(WaveletTransform, LiftedUpdateRemovesMeanOfRegularDetails) {
-  // Zeroth moment: on a regular torus, a constant detail field at one level
-  // moves the coarse values by 6 * 1/8 * d per vertex... i.e. the coarse mean
-  // follows the fine mean (area-weighted: every level has the same face count ratio).
+TEST(WaveletTransform, LiftedScalingValuesKeepTheMean) {
+  // Zeroth moment (the point of the update): on a regular torus every fine vertex
+  // has the same area and every coarse vertex four times that, so the coarse
+  // scaling values must have the same mean as the fine mesh.
   const Mesh torus = testing::MakeTorus(8, 6);
   const SemiRegularHierarchy h = Build(torus, 1);
   const RefinementStep step(h, 0, WaveletKind::kLifted);
@@ -178,8 +178,6 @@ TEST(WaveletTransform, LiftedUpdateRemovesMeanOfRegularDetails) {
   step.Synthesize(torus.positions, constant, &fine);
   std::vector<Vec3> coarse, details;
   step.Analyze(fine, &coarse, &details);
-  // Mean of the fine mesh (uniform weights: all fine vertices have 6 faces) equals
-  // the mean of the coarse values: the lifted scaling values keep the average.
   Vec3 fine_mean = Vec3::Zero(), coarse_mean = Vec3::Zero();
   for (const Vec3& p : fine) fine_mean += p / static_cast<double>(fine.size());
   for (const Vec3& p : coarse) coarse_mean += p / static_cast<double>(coarse.size());

@@ -45,14 +45,15 @@ struct GridPoint {
   int32_t step_q16, dead_zone_q16;
 };
 
-// The finite search grid: step 2^(i/8) for i in [-56, 24], z = step (8 + k) / 16 for
-// k in [0, 40], plus "code nothing" first.
+// The finite search grid: step 2^(i/8) for i in [-96, 24], z = step (8 + k) / 16 for
+// k in [0, 40] (k in [0, 16] below step 1/8, where wide dead zones never win), plus
+// "code nothing" first.
 std::vector<GridPoint> EvaluateGrid(const UnitGgd& ggd) {
   std::vector<GridPoint> grid;
   grid.push_back({0.0, 1.0, 0, 0});
-  for (int i = -56; i <= 24; ++i) {
+  for (int i = -96; i <= 24; ++i) {
     const int64_t step = std::llround(65536.0 * std::exp2(i / 8.0));
-    for (int k = 0; k <= 40; ++k) {
+    for (int k = 0; k <= (i < -24 ? 16 : 40); ++k) {
       const int64_t dz = step * (8 + k) / 16;
       const DeadZoneModel m = EvaluateDeadZone(ggd, static_cast<double>(step) / 65536.0,
                                                 static_cast<double>(dz) / 65536.0);
@@ -83,11 +84,19 @@ DeadZoneModel EvaluateDeadZone(const UnitGgd& ggd, double step, double dead_zone
     out.rate += PairEntropy(2 * m.mass);
     out.distortion += 2 * BinDistortion(m);
   }
-  // What is left is lumped into one open bin per side.
+  const double edge = dead_zone + static_cast<double>(out.mass.size() - 1) * step;
   const UnitGgd::Moments tail = ggd.Between(hi, ggd.AtEdge(std::numeric_limits<double>::infinity()));
   out.tail_mass = 2 * tail.mass;
-  out.rate += PairEntropy(out.tail_mass);
-  out.distortion += 2 * BinDistortion(tail);
+  if (hi.g[0].q < tail_epsilon) {
+    // Negligible: lumped into one open bin per side.
+    out.rate += PairEntropy(out.tail_mass);
+    out.distortion += 2 * BinDistortion(tail);
+  } else {
+    // High-rate pricing of the rest: -log2 f(x) = -log2 f(0) + (eta|x|)^nu / ln 2.
+    out.rate += out.tail_mass * (-(ggd.LogDensityAtZero() + std::log(step)) / std::log(2.0)) +
+                ggd.TwoSidedTailPowerMoment(edge) / std::log(2.0);
+    out.distortion += out.tail_mass * step * step / 12.0;
+  }
   return out;
 }
 

@@ -8,7 +8,8 @@
 // J = R + lambda' D. By scale invariance the quantizer for (sigma, lambda) is sigma
 // times the unit-sigma one for lambda' = lambda sigma^2.
 //
-// Departures: the search grid is finite (step 2^(i/8), z/step = 1/2 + k/16), so the
+// Departures: the search grid is finite (step 2^(i/8) from 2^-12 to 2^3, z/step =
+// 1/2 + k/16 up to 3 for coarse steps and up to 3/2 below step 1/8), so the
 // optimum is a grid optimum; a "code nothing" quantizer (everything in the zero bin,
 // R = 0, D = 1) is part of the grid. Everything here is double precision and runs
 // offline: the integer tables it produces (quantizer_tables.inc) are normative.
@@ -30,8 +31,13 @@ struct DeadZoneModel {
   std::vector<double> centroid;  // centroid[k] of bin k > 0 (centroid[0] = 0)
   double tail_mass = 0;          // mass beyond the last listed bin (both sides)
 };
+// Bins are summed explicitly until the tail holds less than tail_epsilon or max_bins
+// bins were summed; a remaining tail is then priced by the high-rate approximation
+// (entropy -int f log2(f step), distortion step^2 / 12 per unit mass), accurate once
+// bins are narrow against the density's variation, which is the only case where
+// max_bins is reached.
 DeadZoneModel EvaluateDeadZone(const UnitGgd& ggd, double step, double dead_zone,
-                               double tail_epsilon = 1e-10, int max_bins = 200000);
+                               double tail_epsilon = 1e-10, int max_bins = 400);
 
 // The integer form of one table entry, as committed in quantizer_tables.inc.
 struct DesignedQuantizer {
@@ -45,7 +51,7 @@ struct DesignedQuantizer {
 // Table layout shared by the generator, the runtime table and tests.
 struct QuantizerTableLayout {
   static constexpr int kShapeCount = 16;            // nu = 0.5, 0.6, ..., 2.0
-  static constexpr int kBucketCount = 81;           // log2 lambda' in quarter octaves
+  static constexpr int kBucketCount = 113;          // log2 lambda' in quarter octaves
   static constexpr int kBucketMinQuarter = -16;     // bucket 0 starts at lambda' = 2^-4
   static constexpr int kMaxIndexCap = 64;           // at most 65 magnitude symbols
   static constexpr int kFreqBits = 15;

@@ -102,6 +102,11 @@ double UnitGgd::TwoSidedTail(double t) const {
   return RegularizedGamma(1.0 / nu_, std::pow(eta_ * t, nu_)).q;
 }
 
+double UnitGgd::TwoSidedTailPowerMoment(double t) const {
+  // (eta|X|)^nu is Gamma(1/nu, 1) distributed; E[U; U > u0] = Gamma(1/nu + 1, u0) / Gamma(1/nu).
+  return RegularizedGamma(1.0 / nu_ + 1.0, std::pow(eta_ * t, nu_)).q / nu_;
+}
+
 double GgdAbsToRmsRatio(double shape) {
   return std::exp(std::lgamma(2.0 / shape) - 0.5 * (std::lgamma(1.0 / shape) + std::lgamma(3.0 / shape)));
 }

@@ -45,6 +45,11 @@ class UnitGgd {
   EdgeGammas AtEdge(double t) const;
   Moments Between(const EdgeGammas& lo, const EdgeGammas& hi) const;
 
+  // E[(eta |X|)^nu ; |X| > t], for the high-rate entropy of a tail.
+  double TwoSidedTailPowerMoment(double t) const;
+  // log of the density at 0.
+  double LogDensityAtZero() const { return log_norm_; }
+
   // Probability that |X| > t.
   double TwoSidedTail(double t) const;
 

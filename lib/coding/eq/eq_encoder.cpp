@@ -1,1 +1,301 @@
+// EQ level encoder: see eq_encoder.h for the papers followed and the departures.
+#include "coding/eq/eq_encoder.h"
 
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "coding/entropy/ggd.h"
+#include "coding/entropy/range_coder.h"
+
+namespace eqmesh {
+namespace {
+
+constexpr int64_t kMaxEscapeExcess = (int64_t{1} << (kEqMaxEscapePrefix + 1)) - 2;
+
+int32_t ClampLog(double v, int32_t lo, int32_t hi) {
+  if (!(v > lo)) return lo;
+  if (!(v < hi)) return hi;
+  return static_cast<int32_t>(std::lround(v));
+}
+
+// Table shape whose E|x| / RMS ratio is closest to the sample's (moment matching).
+uint8_t FitShape(double mean_abs, double mean_sq) {
+  if (mean_sq <= 0) return 5;
+  const double ratio = mean_abs / std::sqrt(mean_sq);
+  int best = 0;
+  for (int s = 1; s < kQuantizerShapeCount; ++s) {
+    if (std::fabs(GgdAbsToRmsRatio(QuantizerTableLayout::Shape(s)) - ratio) <
+        std::fabs(GgdAbsToRmsRatio(QuantizerTableLayout::Shape(best)) - ratio)) {
+      best = s;
+    }
+  }
+  return static_cast<uint8_t>(best);
+}
+
+// Running sums of a sample, turned into a GGD class.
+struct Moments {
+  double n = 0, abs = 0, sq = 0;
+  void Add(double x) {
+    n += 1;
+    abs += std::fabs(x);
+    sq += x * x;
+  }
+  EqGgdClass ToClass(int32_t lo, int32_t hi) const {
+    EqGgdClass c;
+    if (n == 0 || sq <= 0) return c;
+    c.present = true;
+    c.shape = FitShape(abs / n, sq / n);
+    c.log_sigma2 = ClampLog(16.0 * std::log2(sq / n), lo, hi);
+    return c;
+  }
+};
+
+// Estimated bits of index q under an entry (frequency, sign, escape).
+double IndexBits(const QuantizerEntry& e, int64_t q) {
+  const int64_t mag = q < 0 ? -q : q;
+  const int slot = static_cast<int>(std::min<int64_t>(mag, e.max_index));
+  double bits = kQuantizerFreqBits - std::log2(static_cast<double>(e.freq[slot]));
+  if (mag > 0) bits += 1;
+  if (mag >= e.max_index) bits += 2 * std::floor(std::log2(static_cast<double>(mag - e.max_index + 1))) + 1;
+  return bits;
+}
+
+// Index of {0, k-1, k} minimising bits + lambda (x - recon)^2, k the dead-zone index.
+int64_t ChooseIndex(double x, const EqQuantizer& quantizer, double lambda_q0) {
+  if (quantizer.codes_nothing()) return 0;
+  const QuantizerEntry& e = *quantizer.entry;
+  const double sigma = static_cast<double>(quantizer.sigma_q16) / 65536.0;
+  const double u = std::fabs(x) / sigma;
+  const double z = e.dead_zone_q16 / 65536.0, step = e.step_q16 / 65536.0;
+  const double limit = static_cast<double>(e.max_index + kMaxEscapeExcess);
+  const int64_t k = u <= z ? 0 : static_cast<int64_t>(std::min(std::ceil((u - z) / step), limit));
+  const int64_t sign = x < 0 ? -1 : 1;
+  int64_t best = 0;
+  double best_j = 0;
+  for (int64_t c : {int64_t{0}, k - 1, k}) {
+    if (c < 0 || (c == 0 && best_j != 0)) continue;
+    const double err = x - static_cast<double>(ReconstructIndex(quantizer, sign * c));
+    const double j = IndexBits(e, c) + lambda_q0 * err * err;
+    if (c == 0 || j < best_j) {
+      best = c;
+      best_j = j;
+    }
+  }
+  return sign * best;
+}
+
+void EncodeIndex(RangeEncoder* enc, const EqQuantizer& quantizer, int64_t q, EqContext ctx,
+                 EqEscapeModels* models) {
+  if (quantizer.codes_nothing()) return;
+  const QuantizerEntry& e = *quantizer.entry;
+  const int64_t mag = q < 0 ? -q : q;
+  const int m = static_cast<int>(std::min<int64_t>(mag, e.max_index));
+  uint32_t cum = 0;
+  for (int s = 0; s < m; ++s) cum += e.freq[s];
+  enc->EncodeSymbol(cum, e.freq[m], kQuantizerFreqBits);
+  if (m == 0) return;
+  enc->EncodeBits(q < 0 ? 1u : 0u, 1);
+  if (m < e.max_index) return;
+  // Exp-Golomb of the excess: p ones on adaptive prefix models, a zero, p bypass bits.
+  const uint64_t v = static_cast<uint64_t>(mag - e.max_index) + 1;
+  int p = 0;
+  while ((v >> (p + 1)) != 0) ++p;
+  auto& prefix = models->prefix[static_cast<int>(ctx)];
+  for (int i = 0; i < p; ++i) enc->EncodeBit(&prefix[i], 1);
+  enc->EncodeBit(&prefix[p], 0);
+  enc->EncodeBits(static_cast<uint32_t>(v - (uint64_t{1} << p)), p);
+}
+
+void EncodeClass(RangeEncoder* enc, const EqGgdClass& c) {
+  enc->EncodeBits(c.present ? 1u : 0u, 1);
+  if (!c.present) return;
+  enc->EncodeBits(c.shape, kEqShapeBits);
+  enc->EncodeBits(static_cast<uint32_t>(c.log_sigma2 + (1 << (kEqLogBits - 1))), kEqLogBits);
+}
+
+void EncodeSideInfo(RangeEncoder* enc, const EqSideInfo& side, uint32_t count) {
+  enc->EncodeBits(count, 32);
+  enc->EncodeBits(static_cast<uint32_t>(side.lambda_code + (1 << (kEqCodeBits - 1))), kEqCodeBits);
+  enc->EncodeBits(static_cast<uint32_t>(side.tangential_code + (1 << (kEqCodeBits - 1))), kEqCodeBits);
+  EncodeClass(enc, side.predictable);
+  EncodeClass(enc, side.unpredictable);
+  EncodeClass(enc, side.tangential);
+}
+
+// Per scan position: the partition and sigma-hat a pass produced.
+struct Partition {
+  std::vector<uint8_t> predictable;
+  std::vector<int32_t> log_sigma2_hat;
+  bool operator==(const Partition& o) const { return predictable == o.predictable; }
+};
+
+class LevelEncoder {
+ public:
+  LevelEncoder(const EqLevelLayout& layout, std::vector<double> normal, double lambda_q0)
+      : layout_(layout), normal_(std::move(normal)), lambda_q0_(lambda_q0) {}
+
+  // Step 6: threshold the unquantized causal neighbours.
+  Partition InitialPartition() const {
+    const double threshold = 0.5 * std::sqrt(6.0 / (lambda_q0_ * std::log(2.0)));
+    Partition p;
+    p.predictable.assign(normal_.size(), 0);
+    p.log_sigma2_hat.assign(normal_.size(), 0);
+    for (size_t i = 0; i < normal_.size(); ++i) {
+      double sum = 0, weight = 0;
+      bool significant = false;
+      for (uint32_t e = layout_.offsets[i]; e < layout_.offsets[i + 1]; ++e) {
+        const double x = normal_[layout_.neighbours[e]];
+        const double w = 4 >> (layout_.ring[e] - 1);
+        sum += w * x * x;
+        weight += w;
+        significant = significant || std::fabs(x) >= threshold;
+      }
+      if (!significant) continue;
+      p.predictable[i] = 1;
+      p.log_sigma2_hat[i] = ClampLog(16.0 * std::log2(sum / weight), kEqMinLogSigma2, kEqMaxLogSigma2);
+    }
+    return p;
+  }
+
+  // Step 8: GGD parameters of the two classes of a partition.
+  void EstimateNormalClasses(const Partition& p, EqSideInfo* side) const {
+    Moments pred, unpred;
+    for (size_t i = 0; i < normal_.size(); ++i) {
+      if (p.predictable[i]) {
+        pred.Add(normal_[i] / std::exp2(p.log_sigma2_hat[i] / 32.0));
+      } else {
+        unpred.Add(normal_[i]);
+      }
+    }
+    side->predictable = pred.ToClass(-kEqMaxGain, kEqMaxGain);
+    // A predictable class with nothing in it still needs a quantizer should the
+    // final pass classify differently: keep it present with unit gain.
+    if (!side->predictable.present) side->predictable = {true, 5, 0};
+    side->unpredictable = unpred.ToClass(kEqMinLogSigma2, kEqMaxLogSigma2);
+  }
+
+  // Steps 9-14: one causal pass; codes when enc is given. Returns the partition.
+  Partition Pass(const EqSideInfo& side, RangeEncoder* enc, EqEscapeModels* models,
+                 std::vector<int64_t>* recon) const {
+    Partition p;
+    p.predictable.assign(normal_.size(), 0);
+    p.log_sigma2_hat.assign(normal_.size(), 0);
+    recon->assign(normal_.size(), 0);
+    for (size_t i = 0; i < normal_.size(); ++i) {
+      const uint32_t b = layout_.offsets[i];
+      const EqNormalChoice c = ChooseNormalQuantizer(side, recon->data(), &layout_.neighbours[b],
+                                                     &layout_.ring[b], layout_.offsets[i + 1] - b);
+      p.predictable[i] = c.ctx == EqContext::kPredictable;
+      p.log_sigma2_hat[i] = c.log_sigma2_hat;
+      const int64_t q = ChooseIndex(normal_[i], c.quantizer, lambda_q0_);
+      if (enc != nullptr) EncodeIndex(enc, c.quantizer, q, c.ctx, models);
+      (*recon)[i] = ReconstructIndex(c.quantizer, q);
+    }
+    return p;
+  }
+
+ private:
+  const EqLevelLayout& layout_;
+  std::vector<double> normal_;  // by scan position, in q0
+  double lambda_q0_;
+};
+
+Status ValidateInputs(const EqLevelLayout& layout, const std::vector<Vec3>& coeffs, double q0,
+                      const EqEncodeOptions& options) {
+  const std::string where = "EQ level " + std::to_string(layout.level);
+  if (coeffs.size() != layout.size()) {
+    return InvalidArgument(where + ": " + std::to_string(coeffs.size()) + " coefficients for " +
+                           std::to_string(layout.size()) + " odd vertices");
+  }
+  if (!(q0 > 0) || !std::isfinite(q0)) return InvalidArgument(where + ": quantum q0 must be positive");
+  if (!(options.tangential_factor > 0) || !std::isfinite(options.tangential_factor)) {
+    return InvalidArgument(where + ": tangential factor must be positive");
+  }
+  const int32_t code_limit = 1 << (kEqCodeBits - 1);
+  if (options.lambda_code < -code_limit || options.lambda_code >= code_limit) {
+    return InvalidArgument(where + ": lambda code out of range");
+  }
+  const double limit = static_cast<double>(kEqMaxCoefficient / 2) * q0;
+  for (size_t k = 0; k < coeffs.size(); ++k) {
+    if (!coeffs[k].allFinite() || coeffs[k].cwiseAbs().maxCoeff() > limit) {
+      return InvalidArgument(where + ": coefficient " + std::to_string(k) +
+                             " is not finite or exceeds 2^27 quanta (q0 too small)");
+    }
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
+int32_t EqLambdaCode(double lambda, double q0) {
+  const int32_t limit = 1 << (kEqCodeBits - 1);
+  return ClampLog(16.0 * std::log2(lambda * q0 * q0), -limit, limit - 1);
+}
+
+StatusOr<std::vector<uint8_t>> EncodeEqLevel(const EqLevelLayout& layout,
+                                             const std::vector<Vec3>& local_coeffs, double q0,
+                                             const EqEncodeOptions& options,
+                                             std::vector<Vec3>* reconstructed,
+                                             EqEncodeStats* stats) {
+  EQMESH_RETURN_IF_ERROR(ValidateInputs(layout, local_coeffs, q0, options));
+  const size_t n = layout.size();
+  std::vector<double> normal(n);
+  Moments tangential;
+  for (size_t i = 0; i < n; ++i) {
+    const Vec3& c = local_coeffs[layout.scan[i]];
+    normal[i] = c[0] / q0;
+    tangential.Add(c[1] / q0);
+    tangential.Add(c[2] / q0);
+  }
+  EqSideInfo side;
+  side.lambda_code = options.lambda_code;
+  const int32_t code_limit = 1 << (kEqCodeBits - 1);
+  side.tangential_code = ClampLog(16.0 * std::log2(options.tangential_factor), -code_limit - side.lambda_code,
+                                  code_limit - 1 - side.lambda_code);
+  side.tangential = tangential.ToClass(kEqMinLogSigma2, kEqMaxLogSigma2);
+  const double lambda_q0 = std::exp2(options.lambda_code / 16.0);
+  const LevelEncoder level(layout, std::move(normal), lambda_q0);
+
+  // Steps 5-16: alternate parameter estimation and causal passes until the
+  // partition the parameters were estimated from reproduces itself.
+  Partition partition = level.InitialPartition();
+  EqEncodeStats local_stats;
+  std::vector<int64_t> recon;
+  for (int it = 0; it < std::max(1, options.max_iterations); ++it) {
+    level.EstimateNormalClasses(partition, &side);
+    Partition next = level.Pass(side, nullptr, nullptr, &recon);
+    local_stats.iterations = it + 1;
+    if (next == partition) {
+      local_stats.converged = true;
+      break;
+    }
+    partition = std::move(next);
+  }
+
+  RangeEncoder enc;
+  EncodeSideInfo(&enc, side, static_cast<uint32_t>(n));
+  EqEscapeModels models;
+  partition = level.Pass(side, &enc, &models, &recon);
+  const EqQuantizer tq = TangentialQuantizer(side);
+  const double lambda_t = lambda_q0 * std::exp2(side.tangential_code / 16.0);
+  std::vector<Vec3> out(n);
+  for (size_t i = 0; i < n; ++i) {
+    const Vec3& c = local_coeffs[layout.scan[i]];
+    Vec3& r = out[layout.scan[i]];
+    r[0] = static_cast<double>(recon[i]) * q0;
+    for (int k = 1; k < 3; ++k) {
+      const int64_t q = ChooseIndex(c[k] / q0, tq, lambda_t);
+      EncodeIndex(&enc, tq, q, EqContext::kTangential, &models);
+      r[k] = static_cast<double>(ReconstructIndex(tq, q)) * q0;
+    }
+    local_stats.unpredictable += partition.predictable[i] ? 0 : 1;
+    local_stats.nonzero_normal += recon[i] != 0 ? 1 : 0;
+  }
+  local_stats.side = side;
+  if (stats != nullptr) *stats = local_stats;
+  if (reconstructed != nullptr) *reconstructed = std::move(out);
+  return enc.Finish();
+}
+
+}  // namespace eqmesh

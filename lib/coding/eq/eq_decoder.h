@@ -1,0 +1,27 @@
+// EQ level decoder (Lavu, Choi, Baraniuk, SGP 2003; LoPresto, Ramchandran, Orchard,
+// DCC 1997): reads one level's self-contained chunk and rebuilds its wavelet
+// coefficients (normal, tangent, bitangent per odd vertex). Safe on hostile input:
+// every loop is bounded by the layout, every allocation by its size, and a truncated
+// or inconsistent chunk yields kCorruptStream.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "coding/eq/eq_layout.h"
+#include "core/status.h"
+#include "mesh/mesh.h"
+
+namespace eqmesh {
+
+// Coefficients in integer multiples of q0, indexed by odd index (not scan position).
+StatusOr<std::vector<std::array<int64_t, 3>>> DecodeEqLevelQuanta(const EqLevelLayout& layout,
+                                                                 const uint8_t* data, size_t size);
+
+// Same, in world units: component c of odd vertex k is quanta[k][c] * q0.
+StatusOr<std::vector<Vec3>> DecodeEqLevel(const EqLevelLayout& layout, const uint8_t* data,
+                                          size_t size, double q0);
+
+}  // namespace eqmesh

@@ -1,0 +1,54 @@
+// EQ level encoder (Lavu, Choi, Baraniuk, SGP 2003, Sec. 3.3 steps 5-16; LoPresto,
+// Ramchandran, Orchard, DCC 1997): estimates the level's GGD side information,
+// iterates the predictable / unpredictable partition to convergence, then codes the
+// level once with the final side information. Per coefficient the quantizer comes
+// from the shared integer model (eq_model.h); the index is the one of {0, k-1, k}
+// (k the dead-zone index) minimising J = R + lambda D, R from the bin frequencies.
+//
+// Departures: the initial partition thresholds the unquantized causal neighbours
+// at half the high-rate step sqrt(6 / (lambda ln 2)); shapes are fitted by the
+// E|x| / RMS ratio (moment matching) rather than ML; the predictable class sends a
+// gain over the RMS sigma-hat instead of a sigma.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "coding/eq/eq_layout.h"
+#include "coding/eq/eq_model.h"
+#include "core/status.h"
+#include "mesh/mesh.h"
+
+namespace eqmesh {
+
+struct EqEncodeOptions {
+  // lambda * q0^2 = 2^(lambda_code / 16); see EqLambdaCode.
+  int32_t lambda_code = 0;
+  // lambda of the tangential components = tangential_factor * lambda (seed: 100).
+  double tangential_factor = 100.0;
+  // Bound on the partition iterations (steps 7-16).
+  int max_iterations = 12;
+};
+
+struct EqEncodeStats {
+  int iterations = 0;        // passes run before the final coding pass
+  bool converged = false;    // the partition reached a fixed point
+  uint32_t unpredictable = 0;
+  uint32_t nonzero_normal = 0;
+  EqSideInfo side;
+};
+
+// lambda_code for a Lagrangian slope lambda (per squared world unit) and quantum q0.
+int32_t EqLambdaCode(double lambda, double q0);
+
+// Codes one level. local_coeffs[k] = (normal, tangent, bitangent) of odd vertex
+// first_vertex + k, in world units. On success *reconstructed (if not null) holds
+// exactly what DecodeEqLevel returns for the chunk, so a closed-loop encoder can
+// continue from the decoder's geometry.
+StatusOr<std::vector<uint8_t>> EncodeEqLevel(const EqLevelLayout& layout,
+                                             const std::vector<Vec3>& local_coeffs, double q0,
+                                             const EqEncodeOptions& options,
+                                             std::vector<Vec3>* reconstructed,
+                                             EqEncodeStats* stats = nullptr);
+
+}  // namespace eqmesh

@@ -1,0 +1,114 @@
+// The part of the EQ coder (LoPresto, Ramchandran, Orchard, DCC 1997; Lavu, Choi,
+// Baraniuk, SGP 2003, Sec. 3) that encoder and decoder must evaluate identically:
+// side information, the causal sigma estimate, quantizer selection, reconstruction
+// and symbol (de)coding. Integer / fixed-point only, so both sides select the same
+// quantizer on any compiler.
+//
+// Units: every coefficient is an integer multiple of the stream quantum q0 once
+// reconstructed. Sigmas and lambda travel as base-2 logarithms in 1/16 octave:
+//   lambda * q0^2        = 2^(lambda_code / 16)        (D measured in q0^2)
+//   sigma^2 / q0^2       = 2^(log_sigma2 / 16)
+//
+// Departures from the papers:
+//  * sigma-hat is the ring-weighted RMS of the reconstructed causal neighbours
+//    (weights 4, 2, 1 for rings 1, 2, 3) times a per-level gain sent as side
+//    information, rather than the ML estimate under the GGD: the RMS is exact in
+//    integers, and the gain absorbs its bias for the level's actual distribution.
+//  * A coefficient is unpredictable exactly when its causal neighbours all
+//    reconstruct to zero (or it has none), which the decoder can check itself.
+//  * Magnitudes at or beyond the table's open bin M are escaped with an adaptive
+//    Exp-Golomb code of |q| - M (context-modelled prefix, bypass suffix).
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "coding/entropy/quantizer_table.h"
+#include "coding/entropy/range_coder.h"
+
+namespace eqmesh {
+
+// Reconstructed coefficients are clamped to this many q0 (both sides).
+inline constexpr int64_t kEqMaxCoefficient = int64_t{1} << 28;
+// Escape prefix limit: |q| - M < 2^(kEqMaxEscapePrefix + 1).
+inline constexpr int kEqMaxEscapePrefix = 24;
+// Log-sigma codes are kept inside this range (sigma from 2^-20 to 2^30 q0).
+inline constexpr int32_t kEqMinLogSigma2 = -640;
+inline constexpr int32_t kEqMaxLogSigma2 = 960;
+
+// One GGD class of a level: its shape (table index) and sigma. `present` false
+// means the class codes nothing (all its coefficients reconstruct to zero).
+struct EqGgdClass {
+  bool present = false;
+  uint8_t shape = 5;         // index into the table's shapes (nu = 0.5 + 0.1 shape)
+  int32_t log_sigma2 = 0;    // for predictable coefficients: the gain over sigma-hat^2
+};
+
+// Side information of one level, sent at the start of its chunk.
+struct EqSideInfo {
+  int32_t lambda_code = 0;
+  int32_t tangential_code = 0;  // lambda_t = lambda * 2^(tangential_code / 16)
+  EqGgdClass predictable;       // log_sigma2 is the gain g: sigma^2 = sigma_hat^2 2^(g/16)
+  EqGgdClass unpredictable;
+  EqGgdClass tangential;
+};
+
+__extension__ typedef unsigned __int128 EqUint128;  // GCC/Clang; pedantic-clean
+__extension__ typedef __int128 EqInt128;
+
+// floor(16 * log2(x)) for x >= 1, exactly, in integers.
+int32_t Log2Sixteenths(EqUint128 x);
+
+// log2(sigma_hat^2) in 1/16 octave from the reconstructed causal neighbours (in q0,
+// indexed by scan position); false when every neighbour is zero or there is none
+// (the coefficient is unpredictable).
+bool EstimateLogSigma2(const int64_t* recon, const uint32_t* neighbours, const uint8_t* rings,
+                       uint32_t count, int32_t* log_sigma2);
+
+// The quantizer of one coefficient: a table entry and the sigma it is scaled by.
+struct EqQuantizer {
+  const QuantizerEntry* entry = nullptr;
+  int64_t sigma_q16 = 0;  // sigma in q0 units, Q16
+  bool codes_nothing() const { return entry == nullptr || entry->codes_nothing(); }
+};
+EqQuantizer SelectQuantizer(int shape, int32_t log_sigma2, int32_t lambda_code);
+
+// Reconstruction of index q (in q0 units, clamped to kEqMaxCoefficient).
+int64_t ReconstructIndex(const EqQuantizer& quantizer, int64_t q);
+
+// Context sets of the escape models.
+enum class EqContext : int { kPredictable = 0, kUnpredictable = 1, kTangential = 2 };
+struct EqEscapeModels {
+  std::array<std::array<AdaptiveBit, kEqMaxEscapePrefix + 1>, 3> prefix;
+};
+
+// The normal-component quantizer of one coefficient from its causal neighbourhood
+// (recon indexed by scan position): predictable ones use sigma-hat times the level's
+// gain and the predictable shape; the rest use the unpredictable class.
+struct EqNormalChoice {
+  EqQuantizer quantizer;
+  EqContext ctx = EqContext::kUnpredictable;
+  int32_t log_sigma2_hat = 0;  // sigma-hat^2 before the gain (predictable only)
+};
+EqNormalChoice ChooseNormalQuantizer(const EqSideInfo& side, const int64_t* recon,
+                                     const uint32_t* neighbours, const uint8_t* rings,
+                                     uint32_t count);
+EqQuantizer TangentialQuantizer(const EqSideInfo& side);
+
+// Decodes one index; the decoder's error flag reports impossible streams.
+int64_t DecodeIndex(RangeDecoder* dec, const EqQuantizer& quantizer, EqContext ctx,
+                    EqEscapeModels* models);
+
+// Side information layout (bypass bits, in this order): coefficient count (32),
+// lambda_code and tangential_code (16 each, offset 2^15), then per class
+// (predictable, unpredictable, tangential): present (1), and if present shape (4)
+// and log_sigma2 (12, offset 2^11). Decoding validates every range.
+inline constexpr int32_t kEqMaxGain = 1024;  // |predictable gain| limit
+bool DecodeSideInfo(RangeDecoder* dec, uint32_t expected_count, EqSideInfo* side);
+
+// Bits of the side-information fields, shared by both halves.
+inline constexpr int kEqCodeBits = 16;
+inline constexpr int kEqLogBits = 12;
+inline constexpr int kEqShapeBits = 4;
+
+}  // namespace eqmesh

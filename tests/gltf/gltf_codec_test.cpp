@@ -1,0 +1,177 @@
+// EXT_normal_mesh_compression with the real codec: glb -> compressed glb -> loaded
+// model, at the promised quality, per level, and through the Khronos validator.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+
+#include "gltf/accessor_io.h"
+#include "gltf/extension.h"
+#include "gltf/gltf_converter.h"
+#include "gltf/gltf_io.h"
+#include "gltf/gltf_loader.h"
+#include "gltf_test_support.h"
+#include "mesh/mesh_io.h"
+#include "mesh/semi_regular.h"
+#include "mesh/triangle_bvh.h"
+#include "test_support.h"
+
+namespace eqmesh {
+namespace {
+
+constexpr double kTargetPsnr = 60.0;
+
+// A smooth, not-quite-symmetric closed surface (an ellipsoid with a bump).
+Mesh Pebble() {
+  Mesh mesh = testing::MakeIcosphere(3);
+  for (Vec3& p : mesh.positions) {
+    p = Vec3(1.3 * p.x(), 0.9 * p.y(), 0.7 * p.z()) * (1.0 + 0.1 * std::sin(3.0 * p.x()));
+  }
+  return mesh;
+}
+
+// RMS distance of a's vertices to surface b.
+double VertexRms(const Mesh& a, const TriangleBvh& b) {
+  double sum = 0;
+  for (const Vec3& p : a.positions) sum += b.ClosestPoint(p).squared_distance;
+  return std::sqrt(sum / static_cast<double>(a.positions.size()));
+}
+
+// Symmetric vertex-to-surface PSNR: an independent, cruder meter than the codec's
+// Metro sampling (vertices instead of area samples), hence a tolerance below.
+double VertexPsnr(const Mesh& original, const Mesh& decoded) {
+  auto to_original = TriangleBvh::Build(original);
+  auto to_decoded = TriangleBvh::Build(decoded);
+  if (!to_original.ok() || !to_decoded.ok()) return 0;
+  const double rms = std::max(VertexRms(decoded, *to_original), VertexRms(original, *to_decoded));
+  return 20.0 * std::log10(BoundingBoxDiagonal(original) / rms);
+}
+
+gltf::ConvertOptions Options(bool fallback = false) {
+  gltf::ConvertOptions options;
+  options.codec.target_psnr = kTargetPsnr;
+  options.codec.measure_psnr = true;
+  options.fallback = fallback;
+  return options;
+}
+
+// Pebble as a GLB, converted once for all tests (remeshing is the slow part).
+struct Converted {
+  std::string input, compressed;
+  gltf::ConvertReport report;
+  Status status;
+};
+
+const Converted& PebbleConverted() {
+  static const Converted converted = [] {
+    Converted c;
+    c.input = testing::TempPath("pebble.glb");
+    c.compressed = testing::TempPath("pebble_compressed.glb");
+    c.status = gltf::WriteGlb(testing::MakeSingleMeshModel(Pebble()), c.input);
+    if (!c.status.ok()) return c;
+    auto report = gltf::ConvertToCompressedGltf(c.input, c.compressed, Options());
+    c.status = report.status();
+    if (report.ok()) c.report = *report;
+    return c;
+  }();
+  return converted;
+}
+
+TEST(GltfCodec, LoadedModelMeetsThePromisedPsnr) {
+  const Converted& c = PebbleConverted();
+  ASSERT_TRUE(c.status.ok()) << c.status.ToString();
+  ASSERT_EQ(c.report.compressed, 1u) << c.report.primitives[0].reason;
+  EXPECT_GT(c.report.input_bytes, c.report.output_bytes);
+  EXPECT_GE(c.report.primitives[0].psnr_db, kTargetPsnr - 0.5);
+  auto model = gltf::LoadGltf(c.compressed);
+  ASSERT_TRUE(model.ok()) << model.status().ToString();
+  auto decoded = gltf::ReadTrianglePrimitive(*model, model->meshes[0].primitives[0]);
+  ASSERT_TRUE(decoded.ok()) << decoded.status().ToString();
+  const double psnr = VertexPsnr(Pebble(), *decoded);
+  std::cout << "[ measured ] pebble " << Pebble().positions.size() << " vertices -> " << c.report.output_bytes
+            << " B GLB (" << c.report.primitives[0].stream_bytes << " B stream), codec PSNR "
+            << c.report.primitives[0].psnr_db << " dB, vertex PSNR of the loaded mesh " << psnr << " dB\n";
+  EXPECT_GE(psnr, kTargetPsnr - 3.0);
+}
+
+TEST(GltfCodec, EachMaxLevelGivesThatLevelsVertexCount) {
+  const Converted& c = PebbleConverted();
+  ASSERT_TRUE(c.status.ok()) << c.status.ToString();
+  gltf::LoadOptions coarse;
+  coarse.max_level = 0;
+  auto base = gltf::LoadGltf(c.compressed, coarse);
+  ASSERT_TRUE(base.ok()) << base.status().ToString();
+  auto base_mesh = gltf::ReadTrianglePrimitive(*base, base->meshes[0].primitives[0]);
+  ASSERT_TRUE(base_mesh.ok());
+  const int levels = c.report.primitives[0].levels;
+  auto h = SemiRegularHierarchy::Build(static_cast<uint32_t>(base_mesh->positions.size()), base_mesh->faces, levels);
+  ASSERT_TRUE(h.ok()) << h.status().ToString();
+  for (int k = 0; k <= levels; ++k) {
+    gltf::LoadOptions options;
+    options.max_level = k;
+    gltf::LoadReport report;
+    auto model = gltf::LoadGltf(c.compressed, options, &report);
+    ASSERT_TRUE(model.ok()) << "K=" << k << ": " << model.status().ToString();
+    const tinygltf::Primitive& p = model->meshes[0].primitives[0];
+    EXPECT_EQ(model->accessors[static_cast<size_t>(p.attributes.at("POSITION"))].count, h->NumVertices(k)) << k;
+    EXPECT_EQ(model->accessors[static_cast<size_t>(p.indices)].count, 3 * h->Faces(k).size()) << k;
+    EXPECT_EQ(report.decoded[0].level_decoded, k);
+  }
+}
+
+TEST(GltfCodec, CorruptStreamErrorNamesThePrimitive) {
+  const Converted& c = PebbleConverted();
+  ASSERT_TRUE(c.status.ok()) << c.status.ToString();
+  auto model = gltf::ReadGltfModel(c.compressed);
+  ASSERT_TRUE(model.ok());
+  auto ext = gltf::ParseExtension(model->meshes[0].primitives[0].extensions.at(gltf::kExtensionName));
+  ASSERT_TRUE(ext.ok());
+  const tinygltf::BufferView& view = model->bufferViews[static_cast<size_t>(ext->buffer_view)];
+  model->buffers[0].data[view.byteOffset] ^= 0xFF;  // the magic
+  auto bytes = gltf::WriteGlbToBytes(*model);
+  ASSERT_TRUE(bytes.ok());
+  auto loaded = gltf::LoadGltfFromBytes(*bytes, "bad.glb");
+  ASSERT_FALSE(loaded.ok());
+  EXPECT_EQ(loaded.status().code(), StatusCode::kCorruptStream);
+  EXPECT_NE(loaded.status().message().find("bad.glb: mesh 0 primitive 0: "), std::string::npos)
+      << loaded.status().message();
+}
+
+TEST(GltfCodec, MeshFileInputBecomesAOneMeshScene) {
+  const std::string obj = testing::TempPath("pebble.obj");
+  const std::string out = testing::TempPath("pebble_from_obj.glb");
+  ASSERT_TRUE(WriteMesh(Pebble(), obj).ok());
+  gltf::ConvertOptions options = Options(true);
+  options.codec.measure_psnr = false;
+  auto report = gltf::ConvertToCompressedGltf(obj, out, options);
+  ASSERT_TRUE(report.ok()) << report.status().ToString();
+  EXPECT_EQ(report->compressed, 1u);
+  auto plain = gltf::ReadGltfModel(out);  // fallback: no decoder needed
+  ASSERT_TRUE(plain.ok());
+  EXPECT_EQ(plain->meshes.size(), 1u);
+  EXPECT_EQ(plain->nodes.size(), 1u);
+  EXPECT_TRUE(plain->extensionsRequired.empty());
+  auto mesh = gltf::FlattenToMesh(*plain);
+  ASSERT_TRUE(mesh.ok()) << mesh.status().ToString();
+  EXPECT_GE(VertexPsnr(Pebble(), *mesh), kTargetPsnr - 3.0);
+}
+
+TEST(GltfCodec, KhronosValidatorAcceptsCompressedAndDecodedFiles) {
+  const Converted& c = PebbleConverted();
+  ASSERT_TRUE(c.status.ok()) << c.status.ToString();
+  const std::string decoded = testing::TempPath("pebble_decoded.glb");
+  auto model = gltf::LoadGltf(c.compressed);
+  ASSERT_TRUE(model.ok());
+  ASSERT_TRUE(gltf::WriteDecodedGlb(*model, decoded).ok());
+  std::string why;
+  const auto compressed = testing::RunKhronosValidator(c.compressed, &why);
+  if (!compressed) GTEST_SKIP() << why;
+  EXPECT_EQ(compressed->errors, 0) << compressed->messages;
+  const auto plain = testing::RunKhronosValidator(decoded, &why);
+  ASSERT_TRUE(plain) << why;
+  EXPECT_EQ(plain->errors, 0) << plain->messages;
+  EXPECT_EQ(plain->warnings, 0) << plain->messages;
+}
+
+}  // namespace
+}  // namespace eqmesh
