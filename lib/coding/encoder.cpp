@@ -95,10 +95,24 @@ Status Validate(const SemiRegularMesh& mesh, const EncodeOptions& options) {
   return Status::Ok();
 }
 
+// Bounding-box diagonal of all positions (the semi-regular mesh has no unreferenced
+// vertices, so this equals mesh.h's BoundingBoxDiagonal of the finest level).
+double PositionsDiagonal(const std::vector<Vec3>& positions) {
+  if (positions.empty()) return 0.0;
+  Vec3 lo = positions[0], hi = positions[0];
+  for (const Vec3& p : positions) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  return (hi - lo).norm();
+}
+
 StatusOr<Prepared> Prepare(const SemiRegularMesh& mesh, bitstream::TransformId transform) {
   Prepared p;
   p.mesh = &mesh;
-  const double diagonal = BoundingBoxDiagonal(ExtractLevel(mesh, mesh.hierarchy.levels()));
+  std::vector<Vec3> all = mesh.positions;
+  all.insert(all.end(), mesh.kept_exactly.positions.begin(), mesh.kept_exactly.positions.end());
+  const double diagonal = PositionsDiagonal(all);
   p.quantum = static_cast<float>(std::ldexp(diagonal > 0 ? diagonal : 1.0, -bitstream::kQuantumLog2));
   if (!(p.quantum > 0.0f) || !std::isfinite(p.quantum)) {
     return InvalidArgument("mesh extent does not fit the stream's float32 quantum");

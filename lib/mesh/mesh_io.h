@@ -6,7 +6,7 @@
 // counts declared in a header are checked against the bytes actually present before
 // anything is allocated, so a lying header cannot force a huge allocation, and the
 // output of any reader is bounded by a small multiple of the input size (glTF
-// instancing included, see kMaxGltfAmplification).
+// instancing included: at most 64 flattened vertices + faces per input byte).
 //
 // Every reader returns the same normal form, so later stages never see format quirks:
 //  * polygons are fan-triangulated (v0, vi, vi+1); faces with fewer than three

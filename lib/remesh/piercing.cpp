@@ -5,6 +5,9 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <mutex>
+#include <atomic>
+#include <cstdio>
+#include <cstdlib>
 
 #include "remesh/level_domain.h"
 #include "remesh/parallel_for.h"
@@ -83,6 +86,8 @@ class LevelRefiner {
   std::vector<LocalFrame> frames_;
   std::vector<EdgeChoice> choice_;
   std::vector<ParamPoint> params_out_;
+ public:
+  mutable std::atomic<size_t> dbg_[4] = {};
 };
 
 void LevelRefiner::BuildBuckets() {
@@ -115,6 +120,7 @@ EdgeChoice LevelRefiner::PierceEdge(uint32_t k) const {
   std::sort(hits.begin(), hits.end(),
             [reach](const RayHit& x, const RayHit& y) { return std::abs(x.t - reach) < std::abs(y.t - reach); });
   EdgeChoice out;
+  if (hits.empty()) ++dbg_[0];
   if (!hits.empty()) {
     const Chart chart(dom_, sides.left, kChartDepth);
     for (const RayHit& hit : hits) {
@@ -126,7 +132,8 @@ EdgeChoice LevelRefiner::PierceEdge(uint32_t k) const {
         mapped = chart.Map(params_[tri[i]], &ui);
         u += hit.barycentric[i] * ui;
       }
-      if (!mapped || !InKite(u, sides.left_slot)) continue;
+      if (!mapped) { ++dbg_[1]; continue; }
+      if (!InKite(u, sides.left_slot)) { ++dbg_[2]; continue; }
       out.position = p + (hit.t - reach) * n;
       out.u = u;
       out.kind = VertexKind::kNormal;
@@ -332,7 +339,10 @@ void LevelRefiner::Run(std::vector<Vec3>* positions, std::vector<VertexKind>* ki
   ParallelFor(n_edges, [&](size_t begin, size_t end, size_t) {
     for (size_t k = begin; k < end; ++k) choice_[k] = PierceEdge(static_cast<uint32_t>(k));
   });
+  size_t before = 0; for (auto& c : choice_) before += c.kind == VertexKind::kNormal;
   DemoteInvalidFaces();
+  size_t after = 0; for (auto& c : choice_) after += c.kind == VertexKind::kNormal;
+  if (std::getenv("EQ_DEBUG")) std::fprintf(stderr, "level %d edges %zu nohit %zu unmapped %zu outkite %zu normal %zu after-demote %zu\n", j_, n_edges, dbg_[0].load(), dbg_[1].load(), dbg_[2].load(), before, after);
   ParallelFor(n_edges, [&](size_t begin, size_t end, size_t) {
     for (size_t k = begin; k < end; ++k) {
       EdgeChoice& c = choice_[k];

@@ -19,40 +19,52 @@ void LevelAdjacency::BucketOutgoing(uint32_t num_vertices) {
   // Filling in increasing h keeps each bucket sorted, so the result is unique.
   std::vector<uint32_t> cursor(out_offsets_.begin(), out_offsets_.end() - 1);
   out_half_.resize(num_half);
-  for (uint32_t h = 0; h < num_half; ++h) out_half_[cursor[From(h)]++] = h;
+  out_to_.resize(num_half);
+  for (uint32_t h = 0; h < num_half; ++h) {
+    const uint32_t slot = cursor[From(h)]++;
+    out_half_[slot] = h;
+    out_to_[slot] = To(h);
+  }
 }
 
-uint32_t LevelAdjacency::FindHalfEdge(uint32_t a, uint32_t b) const {
+uint32_t LevelAdjacency::FindSlot(uint32_t a, uint32_t b) const {
   if (a + 1 >= out_offsets_.size()) return kNone;
   uint32_t found = kNone;
   for (uint32_t i = out_offsets_[a]; i < out_offsets_[a + 1]; ++i) {
-    const uint32_t h = out_half_[i];
-    if (To(h) != b) continue;
+    if (out_to_[i] != b) continue;
     if (found != kNone) return kNone;  // a -> b used twice: not manifold
-    found = h;
+    found = i;
   }
   return found;
 }
 
+uint32_t LevelAdjacency::FindHalfEdge(uint32_t a, uint32_t b) const {
+  const uint32_t slot = FindSlot(a, b);
+  return slot == kNone ? kNone : out_half_[slot];
+}
+
 void LevelAdjacency::PairTwins() {
-  const uint32_t num_half = static_cast<uint32_t>(out_half_.size());
-  twin_.assign(num_half, kNone);
-  edge_type_.assign(num_half, EdgeType::kNonManifold);
-  for (uint32_t h = 0; h < num_half; ++h) {
-    const uint32_t a = From(h), b = To(h);
-    if (FindHalfEdge(a, b) != h) continue;  // duplicated direction
-    uint32_t reverse_count = 0, reverse = kNone;
-    for (uint32_t i = out_offsets_[b]; i < out_offsets_[b + 1]; ++i) {
-      if (To(out_half_[i]) == a) {
-        ++reverse_count;
-        reverse = out_half_[i];
+  const uint32_t num_vertices = static_cast<uint32_t>(out_offsets_.size() - 1);
+  twin_.assign(out_half_.size(), kNone);
+  edge_type_.assign(out_half_.size(), EdgeType::kNonManifold);
+  for (uint32_t a = 0; a < num_vertices; ++a) {
+    for (uint32_t i = out_offsets_[a]; i < out_offsets_[a + 1]; ++i) {
+      const uint32_t b = out_to_[i];
+      if (FindSlot(a, b) != i) continue;  // duplicated direction
+      uint32_t reverse_count = 0, reverse = kNone;
+      for (uint32_t r = out_offsets_[b]; r < out_offsets_[b + 1]; ++r) {
+        if (out_to_[r] == a) {
+          ++reverse_count;
+          reverse = out_half_[r];
+        }
       }
-    }
-    if (reverse_count == 0) {
-      edge_type_[h] = EdgeType::kBoundary;
-    } else if (reverse_count == 1) {
-      edge_type_[h] = EdgeType::kInterior;
-      twin_[h] = reverse;
+      const uint32_t h = out_half_[i];
+      if (reverse_count == 0) {
+        edge_type_[h] = EdgeType::kBoundary;
+      } else if (reverse_count == 1) {
+        edge_type_[h] = EdgeType::kInterior;
+        twin_[h] = reverse;
+      }
     }
   }
 }

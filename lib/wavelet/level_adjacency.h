@@ -55,12 +55,15 @@ class LevelAdjacency {
  private:
   void BucketOutgoing(uint32_t num_vertices);
   void PairTwins();
+  // Position in out_half_ of the unique half-edge a -> b, kNone if absent or duplicated.
+  uint32_t FindSlot(uint32_t a, uint32_t b) const;
   void ClassifyVertices();
   VertexType ClassifyVertex(uint32_t v);
 
   const std::vector<Face>* faces_;
   std::vector<uint32_t> out_offsets_;  // CSR over vertices
   std::vector<uint32_t> out_half_;     // outgoing half-edges per vertex
+  std::vector<uint32_t> out_to_;       // To(out_half_[i]), contiguous for fast scans
   std::vector<uint32_t> twin_;
   std::vector<EdgeType> edge_type_;
   std::vector<VertexType> vertex_type_;

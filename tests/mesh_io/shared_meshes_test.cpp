@@ -59,12 +59,14 @@ TEST(SharedMeshGzip, DragonsLoad) {
   auto dragon = ReadMesh(testing::SharedPath("meshes/bench/dragon_vrip.ply.gz"), &report);
   ASSERT_TRUE(dragon.ok()) << dragon.status().ToString();
   EXPECT_EQ(dragon->num_faces(), 871414u);
-  EXPECT_EQ(dragon->num_vertices() + report.dropped_unreferenced_vertices, 437645u);
+  EXPECT_EQ(dragon->num_vertices(), 437645u);  // every stored vertex is used
+  EXPECT_EQ(report.dropped_unreferenced_vertices, 0u);
   EXPECT_EQ(CountReferencedVertices(*dragon), dragon->num_vertices());
   auto res2 = ReadMesh(testing::SharedPath("meshes/bench/dragon_vrip_res2.ply.gz"), &report);
   ASSERT_TRUE(res2.ok()) << res2.status().ToString();
   EXPECT_EQ(res2->num_faces(), 202520u);
-  EXPECT_EQ(res2->num_vertices() + report.dropped_unreferenced_vertices, 100250u);
+  EXPECT_EQ(res2->num_vertices(), 100207u);  // the crude decimation left 43 orphans
+  EXPECT_EQ(report.dropped_unreferenced_vertices, 43u);
 }
 
 }  // namespace

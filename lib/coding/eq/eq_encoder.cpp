@@ -19,36 +19,43 @@ int32_t ClampLog(double v, int32_t lo, int32_t hi) {
   return static_cast<int32_t>(std::lround(v));
 }
 
-// Table shape whose E|x| / RMS ratio is closest to the sample's (moment matching).
-uint8_t FitShape(double mean_abs, double mean_sq) {
-  if (mean_sq <= 0) return 5;
-  const double ratio = mean_abs / std::sqrt(mean_sq);
-  int best = 0;
-  for (int s = 1; s < kQuantizerShapeCount; ++s) {
-    if (std::fabs(GgdAbsToRmsRatio(QuantizerTableLayout::Shape(s)) - ratio) <
-        std::fabs(GgdAbsToRmsRatio(QuantizerTableLayout::Shape(best)) - ratio)) {
-      best = s;
-    }
-  }
-  return static_cast<uint8_t>(best);
-}
+// Maximum-likelihood GGD fit over the table's shapes (LoPresto et al. 1997): for a
+// shape nu the ML sigma is sigma^nu = (nu / N) eta1^nu sum |x|^nu with
+// eta1 = sqrt(Gamma(3/nu) / Gamma(1/nu)), and then sum (eta |x|)^nu = N / nu, so the
+// negative log-likelihood per sample is -log(nu eta1 / (2 sigma Gamma(1/nu))) + 1/nu.
+// Heavy-tailed samples get small shapes instead of an inflated sigma.
+class GgdFit {
+ public:
+  void Add(double x) { values_.push_back(std::fabs(x)); }
 
-// Running sums of a sample, turned into a GGD class.
-struct Moments {
-  double n = 0, abs = 0, sq = 0;
-  void Add(double x) {
-    n += 1;
-    abs += std::fabs(x);
-    sq += x * x;
-  }
   EqGgdClass ToClass(int32_t lo, int32_t hi) const {
     EqGgdClass c;
-    if (n == 0 || sq <= 0) return c;
+    double max_abs = 0;
+    for (double v : values_) max_abs = std::max(max_abs, v);
+    if (values_.empty() || max_abs == 0) return c;
+    const double n = static_cast<double>(values_.size());
+    double best_nll = 0, best_log_sigma = 0;
+    for (int s = 0; s < kQuantizerShapeCount; ++s) {
+      const double nu = QuantizerTableLayout::Shape(s);
+      const double lg1 = std::lgamma(1.0 / nu);
+      const double log_eta1 = 0.5 * (std::lgamma(3.0 / nu) - lg1);
+      double sum = 0;
+      for (double v : values_) sum += std::pow(v / max_abs, nu);  // scaled against overflow
+      const double log_sigma = std::log(max_abs) + std::log(nu / n * sum) / nu + log_eta1;
+      const double nll = -(std::log(nu / 2.0) + log_eta1 - log_sigma - lg1) + 1.0 / nu;
+      if (s == 0 || nll < best_nll) {
+        best_nll = nll;
+        best_log_sigma = log_sigma;
+        c.shape = static_cast<uint8_t>(s);
+      }
+    }
     c.present = true;
-    c.shape = FitShape(abs / n, sq / n);
-    c.log_sigma2 = ClampLog(16.0 * std::log2(sq / n), lo, hi);
+    c.log_sigma2 = ClampLog(32.0 * best_log_sigma / std::log(2.0), lo, hi);
     return c;
   }
+
+ private:
+  std::vector<double> values_;
 };
 
 // Estimated bits of index q under an entry (frequency, sign, escape).
@@ -160,7 +167,7 @@ class LevelEncoder {
 
   // Step 8: GGD parameters of the two classes of a partition.
   void EstimateNormalClasses(const Partition& p, EqSideInfo* side) const {
-    Moments pred, unpred;
+    GgdFit pred, unpred;
     for (size_t i = 0; i < normal_.size(); ++i) {
       if (p.predictable[i]) {
         pred.Add(normal_[i] / std::exp2(p.log_sigma2_hat[i] / 32.0));
@@ -175,9 +182,10 @@ class LevelEncoder {
     side->unpredictable = unpred.ToClass(kEqMinLogSigma2, kEqMaxLogSigma2);
   }
 
-  // Steps 9-14: one causal pass; codes when enc is given. Returns the partition.
+  // Steps 9-14: one causal pass; codes when enc is given. Returns the partition and
+  // adds the estimated cost sum (bits + lambda err^2) to *cost when given.
   Partition Pass(const EqSideInfo& side, RangeEncoder* enc, EqEscapeModels* models,
-                 std::vector<int64_t>* recon) const {
+                 std::vector<int64_t>* recon, double* cost = nullptr) const {
     Partition p;
     p.predictable.assign(normal_.size(), 0);
     p.log_sigma2_hat.assign(normal_.size(), 0);
@@ -191,6 +199,10 @@ class LevelEncoder {
       const int64_t q = ChooseIndex(normal_[i], c.quantizer, lambda_q0_);
       if (enc != nullptr) EncodeIndex(enc, c.quantizer, q, c.ctx, models);
       (*recon)[i] = ReconstructIndex(c.quantizer, q);
+      if (cost != nullptr) {
+        const double err = normal_[i] - static_cast<double>((*recon)[i]);
+        *cost += lambda_q0_ * err * err + (c.quantizer.codes_nothing() ? 0.0 : IndexBits(*c.quantizer.entry, q));
+      }
     }
     return p;
   }
@@ -241,7 +253,7 @@ StatusOr<std::vector<uint8_t>> EncodeEqLevel(const EqLevelLayout& layout,
   EQMESH_RETURN_IF_ERROR(ValidateInputs(layout, local_coeffs, q0, options));
   const size_t n = layout.size();
   std::vector<double> normal(n);
-  Moments tangential;
+  GgdFit tangential;
   for (size_t i = 0; i < n; ++i) {
     const Vec3& c = local_coeffs[layout.scan[i]];
     normal[i] = c[0] / q0;
@@ -258,25 +270,42 @@ StatusOr<std::vector<uint8_t>> EncodeEqLevel(const EqLevelLayout& layout,
   const LevelEncoder level(layout, std::move(normal), lambda_q0);
 
   // Steps 5-16: alternate parameter estimation and causal passes until the
-  // partition the parameters were estimated from reproduces itself.
-  Partition partition = level.InitialPartition();
+  // partition the parameters were estimated from reproduces itself (or repeats).
+  std::vector<Partition> history = {level.InitialPartition()};
   EqEncodeStats local_stats;
   std::vector<int64_t> recon;
+  EqSideInfo best_side = side;
+  double best_cost = 0;
   for (int it = 0; it < std::max(1, options.max_iterations); ++it) {
-    level.EstimateNormalClasses(partition, &side);
-    Partition next = level.Pass(side, nullptr, nullptr, &recon);
+    level.EstimateNormalClasses(history.back(), &side);
+    double cost = 0;
+    Partition next = level.Pass(side, nullptr, nullptr, &recon, &cost);
+    if (it == 0 || cost < best_cost) {
+      best_cost = cost;
+      best_side = side;
+    }
     local_stats.iterations = it + 1;
-    if (next == partition) {
+    local_stats.last_change = 0;
+    for (size_t i = 0; i < n; ++i) {
+      local_stats.last_change += next.predictable[i] != history.back().predictable[i];
+    }
+    const auto seen = std::find(history.begin(), history.end(), next);
+    if (seen == history.end() - 1) {
       local_stats.converged = true;
       break;
     }
-    partition = std::move(next);
+    if (seen != history.end()) {
+      local_stats.cycle_length = static_cast<int>(history.end() - seen);
+      break;
+    }
+    history.push_back(std::move(next));
   }
+  side = best_side;
 
   RangeEncoder enc;
   EncodeSideInfo(&enc, side, static_cast<uint32_t>(n));
   EqEscapeModels models;
-  partition = level.Pass(side, &enc, &models, &recon);
+  const Partition partition = level.Pass(side, &enc, &models, &recon);
   const EqQuantizer tq = TangentialQuantizer(side);
   const double lambda_t = lambda_q0 * std::exp2(side.tangential_code / 16.0);
   std::vector<Vec3> out(n);

@@ -5,10 +5,15 @@
 // from the shared integer model (eq_model.h); the index is the one of {0, k-1, k}
 // (k the dead-zone index) minimising J = R + lambda D, R from the bin frequencies.
 //
-// Departures: the initial partition thresholds the unquantized causal neighbours
-// at half the high-rate step sqrt(6 / (lambda ln 2)); shapes are fitted by the
-// E|x| / RMS ratio (moment matching) rather than ML; the predictable class sends a
-// gain over the RMS sigma-hat instead of a sigma.
+// Departures: the partition can enter a short cycle (parameters of A give partition
+// B and those of B give A); iteration stops at a fixed point, at a repeated
+// partition or after max_iterations, and the level is coded with whichever of the
+// side informations tried has the lowest estimated cost J = R + lambda D.
+// The initial partition thresholds the unquantized causal neighbours
+// at half the high-rate step sqrt(6 / (lambda ln 2)); (shape, sigma) of each class
+// are the ML fit of the unquantized values over the table's shapes (not of the
+// quantized ones); the predictable class sends a gain over the RMS sigma-hat (the
+// ML fit of x / sigma-hat) instead of a sigma.
 #pragma once
 
 #include <cstdint>
@@ -33,6 +38,8 @@ struct EqEncodeOptions {
 struct EqEncodeStats {
   int iterations = 0;        // passes run before the final coding pass
   bool converged = false;    // the partition reached a fixed point
+  int cycle_length = 0;      // > 0: it entered a cycle of this period instead
+  uint32_t last_change = 0;  // coefficients that changed class in the last iteration
   uint32_t unpredictable = 0;
   uint32_t nonzero_normal = 0;
   EqSideInfo side;

@@ -1,0 +1,92 @@
+#include "codec_fixtures.h"
+
+#include <cmath>
+#include <fstream>
+#include <iterator>
+
+#include "test_support.h"
+
+namespace eqmesh::testing {
+
+SemiRegularMesh MakeBumpySphere(int levels) {
+  const Mesh ico = MakeIcosphere(0);
+  SemiRegularMesh mesh;
+  mesh.hierarchy = SemiRegularHierarchy::Build(static_cast<uint32_t>(ico.positions.size()),
+                                               ico.faces, levels).value();
+  const SemiRegularHierarchy& h = mesh.hierarchy;
+  // Positions level by level: odd vertex = edge midpoint pushed to the surface.
+  std::vector<Vec3> p = ico.positions;
+  for (int j = 0; j < levels; ++j) {
+    for (uint32_t k = 0; k < h.NumOddVertices(j); ++k) {
+      const Edge& e = h.OddEdge(j, k);
+      p.push_back((0.5 * (p[e[0]] + p[e[1]])).normalized());
+    }
+  }
+  for (Vec3& v : p) {
+    const Vec3 u = v.normalized();
+    v = u * (1.0 + 0.1 * std::sin(3.0 * u.x()) * std::cos(2.0 * u.y()));
+  }
+  mesh.positions = std::move(p);
+  return mesh;
+}
+
+SemiRegularMesh MakeBumpySphereWithKept(int levels) {
+  SemiRegularMesh mesh = MakeBumpySphere(levels);
+  mesh.kept_exactly.positions = {Vec3(2, 0, 0), Vec3(2.1, 0, 0), Vec3(2, 0.1, 0), Vec3(2, 0, 0.1)};
+  mesh.kept_exactly.faces = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  return mesh;
+}
+
+EncodeOptions GoldenOptions() {
+  EncodeOptions options;
+  options.transform = bitstream::TransformId::kUnlifted;
+  options.coder = bitstream::CoderId::kEq;
+  options.lambda = 1.0 / 16.0;
+  options.tangential_factor = 100.0;
+  return options;
+}
+
+std::string GoldenPath() {
+  return std::string(EQMESH_SOURCE_DIR) + "/tests/codec/data/golden_v1_0.eqm";
+}
+
+std::vector<uint8_t> ReadBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::vector<uint8_t>(std::istreambuf_iterator<char>(in), {});
+}
+
+void WriteBytes(const std::string& path, const std::vector<uint8_t>& bytes) {
+  std::ofstream out(path, std::ios::binary);
+  out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+}
+
+double MaxVertexError(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+  double worst = 0;
+  for (size_t i = 0; i < a.size() && i < b.size(); ++i) worst = std::max(worst, (a[i] - b[i]).norm());
+  return worst;
+}
+
+}  // namespace eqmesh::testing
+
+namespace eqmesh::testing {
+double MaxNearestDistance(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+  double worst = 0;
+  for (const Vec3& p : a) {
+    double best = 1e300;
+    for (const Vec3& q : b) best = std::min(best, (p - q).squaredNorm());
+    worst = std::max(worst, std::sqrt(best));
+  }
+  return worst;
+}
+}  // namespace eqmesh::testing
+
+namespace eqmesh::testing {
+double Diagonal(const std::vector<Vec3>& points) {
+  Vec3 lo = points[0], hi = points[0];
+  for (const Vec3& p : points) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  return (hi - lo).norm();
+}
+}  // namespace eqmesh::testing

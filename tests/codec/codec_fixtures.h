@@ -1,0 +1,37 @@
+// Synthetic semi-regular meshes for the codec tests (no shared data needed).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "coding/encoder.h"
+#include "mesh/semi_regular.h"
+
+namespace eqmesh::testing {
+
+// Icosahedron base refined `levels` times, every vertex on a bumpy sphere
+// r = 1 + 0.1 sin(3x) cos(2y) (so details are non-zero and mostly normal).
+SemiRegularMesh MakeBumpySphere(int levels);
+
+// The same with a small tetrahedron in kept_exactly.
+SemiRegularMesh MakeBumpySphereWithKept(int levels);
+
+// The options of the golden stream (tests/codec/data/README.md).
+EncodeOptions GoldenOptions();
+std::string GoldenPath();
+
+std::vector<uint8_t> ReadBytes(const std::string& path);
+void WriteBytes(const std::string& path, const std::vector<uint8_t>& bytes);
+
+double MaxVertexError(const std::vector<Vec3>& a, const std::vector<Vec3>& b);
+
+}  // namespace eqmesh::testing
+
+namespace eqmesh::testing {
+// max over a of the distance to the nearest point of b (brute force, small sets):
+// the decoder numbers vertices in the base chunk's order, so tests compare sets.
+double MaxNearestDistance(const std::vector<Vec3>& a, const std::vector<Vec3>& b);
+// Bounding-box diagonal of a point set.
+double Diagonal(const std::vector<Vec3>& points);
+}  // namespace eqmesh::testing
