@@ -204,7 +204,7 @@ StatusOr<Pass> EncodeAtCode(const Prepared& prep, const EncodeOptions& options, 
 StatusOr<double> MeasurePsnr(const std::vector<uint8_t>& bytes, const Mesh& original) {
   EQMESH_ASSIGN_OR_RETURN(Mesh decoded, Decode(bytes.data(), bytes.size()));
 #ifdef EQMESH_HAVE_METRICS
-  EQMESH_ASSIGN_OR_RETURN(auto comparison, CompareSurfaces(decoded, original, {}));
+  EQMESH_ASSIGN_OR_RETURN(SurfaceDistance comparison, CompareSurfaces(original, decoded));
   return comparison.psnr_db;
 #else
   (void)original;

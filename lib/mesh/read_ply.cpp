@@ -157,8 +157,8 @@ class PlyBodyReader {
     for (uint64_t i = 0; i < e.count; ++i) {
       for (size_t k = 0; k < e.properties.size(); ++k) {
         const PlyProperty& prop = e.properties[k];
-        const Status s = prop.is_list ? ReadList(prop, static_cast<int>(k) == list_slot_) : ReadScalar(prop, k);
-        if (!s.ok()) return s;
+        if (prop.is_list) EQMESH_RETURN_IF_ERROR(ReadList(prop, static_cast<int>(k) == list_slot_));
+        else ReadScalar(prop, k);
         if (!ok_) return Fail(e, i);
       }
       if (role == Role::kVertex) builder_->AddPosition(xyz_[0], xyz_[1], xyz_[2]);
@@ -190,15 +190,14 @@ class PlyBodyReader {
     return Status::Ok();
   }
 
-  Status ReadScalar(const PlyProperty& prop, size_t k) {
+  void ReadScalar(const PlyProperty& prop, size_t k) {
     for (int a = 0; a < 3; ++a) {
       if (xyz_slot_[a] == static_cast<int>(k)) {
         ok_ = src_->ReadDouble(prop.type, &xyz_[a]);
-        return Status::Ok();
+        return;
       }
     }
     ok_ = src_->Skip(prop.type, 1);
-    return Status::Ok();
   }
 
   Status ReadList(const PlyProperty& prop, bool keep) {

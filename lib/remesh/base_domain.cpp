@@ -6,6 +6,8 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <queue>
+#include <cstdio>
+#include <cstdlib>
 
 #include <Eigen/Core>
 
@@ -519,6 +521,16 @@ StatusOr<BaseDomain> BuildBaseDomain(const Mesh& mesh, const std::vector<uint8_t
   Simplifier s(mesh, is_boundary);
   s.Run(options.target_vertices, options.progress);
   BaseDomain base = s.Extract();
+  if (std::getenv("EQ_DEBUG")) {
+    size_t off = 0, total = 0;
+    for (size_t x = 0; x < base.params.size(); ++x) {
+      if (!is_boundary[x]) continue;
+      ++total;
+      const auto& b = base.params[x].bary;
+      if (b[0] != 0.0 && b[1] != 0.0 && b[2] != 0.0) ++off;
+    }
+    std::fprintf(stderr, "base: boundary input vertices off-edge %zu of %zu\n", off, total);
+  }
   for (const ParamPoint& pp : base.params) {
     if (pp.face >= base.faces.size()) return InternalError("base domain lost an input vertex's parameter");
   }

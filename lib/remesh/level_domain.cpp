@@ -72,33 +72,40 @@ Eigen::Vector3d LevelDomain::LeftToRight(uint32_t k, const Eigen::Vector3d& u) c
   return out;
 }
 
-Chart::Chart(const LevelDomain& domain, uint32_t root, int depth) {
-  faces_.push_back(root);
-  corners_.push_back(Eigen::Matrix3d::Identity());
-  size_t begin = 0;
-  for (int step = 0; step < depth; ++step) {
-    const size_t end = faces_.size();
-    for (size_t n = begin; n < end; ++n) {
-      const uint32_t f = faces_[n];
-      for (int i = 0; i < 3; ++i) {
-        const uint32_t g = domain.Neighbour(f, i);
-        if (g == kNoNeighbour || std::find(faces_.begin(), faces_.end(), g) != faces_.end()) continue;
-        faces_.push_back(g);
-        corners_.push_back(corners_[n] * domain.NeighbourCorners(f, i));
-      }
-    }
-    begin = end;
-  }
+Chart::Chart(const LevelDomain& domain)
+    : domain_(domain), slot_(domain.faces().size(), kNoNeighbour) {}
+
+void Chart::Reset(uint32_t root) {
+  for (uint32_t f : faces_) slot_[f] = kNoNeighbour;
+  faces_.assign(1, root);
+  corners_.assign(1, Eigen::Matrix3d::Identity());
+  slot_[root] = 0;
+  expanded_ = 0;
 }
 
-bool Chart::Map(const ParamPoint& p, Eigen::Vector3d* u) const {
-  for (size_t n = 0; n < faces_.size(); ++n) {
-    if (faces_[n] == p.face) {
-      *u = corners_[n] * Eigen::Vector3d(p.bary[0], p.bary[1], p.bary[2]);
-      return true;
+bool Chart::Grow() {
+  const size_t before = faces_.size();
+  while (faces_.size() == before && expanded_ < faces_.size()) {
+    const uint32_t f = faces_[expanded_];
+    const Eigen::Matrix3d frame = corners_[expanded_];
+    ++expanded_;
+    for (int i = 0; i < 3; ++i) {
+      const uint32_t g = domain_.Neighbour(f, i);
+      if (g == kNoNeighbour || slot_[g] != kNoNeighbour) continue;
+      slot_[g] = static_cast<uint32_t>(faces_.size());
+      faces_.push_back(g);
+      corners_.push_back(frame * domain_.NeighbourCorners(f, i));
     }
   }
-  return false;
+  return faces_.size() > before;
+}
+
+bool Chart::Map(const ParamPoint& p, Eigen::Vector3d* u, size_t max_faces) {
+  while (slot_[p.face] == kNoNeighbour) {
+    if (faces_.size() >= max_faces || !Grow()) return false;
+  }
+  *u = corners_[slot_[p.face]] * Eigen::Vector3d(p.bary[0], p.bary[1], p.bary[2]);
+  return true;
 }
 
 }  // namespace eqmesh

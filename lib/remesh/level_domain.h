@@ -57,18 +57,27 @@ class LevelDomain {
   std::vector<uint32_t> face_edges_;
 };
 
-// Faces around a root face unfolded into the root's chart (breadth first, up to
-// `depth` steps across edges).
+// Faces around a root face unfolded into the root's chart, grown breadth first
+// on demand. One object per thread, reused for many roots (Reset is O(faces
+// touched)), so large charts at fine levels cost only what they visit.
 class Chart {
  public:
-  Chart(const LevelDomain& domain, uint32_t root, int depth);
-  // Chart coordinates of a parameter point, false if its face is not in the chart.
-  bool Map(const ParamPoint& p, Eigen::Vector3d* u) const;
-  const std::vector<uint32_t>& faces() const { return faces_; }
+  explicit Chart(const LevelDomain& domain);
+  void Reset(uint32_t root);
+  // Chart coordinates of a parameter point; grows the chart up to `max_faces`
+  // faces to reach its face, false if that is not enough.
+  bool Map(const ParamPoint& p, Eigen::Vector3d* u, size_t max_faces);
+  // Adds the next breadth-first face; false when the component is exhausted.
+  bool Grow();
+  size_t size() const { return faces_.size(); }
+  uint32_t face(size_t n) const { return faces_[n]; }
 
  private:
+  const LevelDomain& domain_;
+  std::vector<uint32_t> slot_;  // per level face: index into faces_, or kNoNeighbour
   std::vector<uint32_t> faces_;
   std::vector<Eigen::Matrix3d> corners_;
+  size_t expanded_ = 0;  // faces_[0, expanded_) have had their neighbours added
 };
 
 }  // namespace eqmesh

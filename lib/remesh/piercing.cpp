@@ -22,8 +22,8 @@ constexpr double kReach = 1.0;
 constexpr double kKiteShrink = 0.9;
 // Minimum quality (4 sqrt 3 A / sum l^2) of a child triangle in the chart.
 constexpr double kMinChildQuality = 0.15;
-// Faces crossed when unfolding charts for hits and midpoints.
-constexpr int kChartDepth = 3;
+// Largest chart unfolded to reach a hit's input triangle or a midpoint's.
+constexpr size_t kMaxChartFaces = 4096;
 
 using Vec3d = Eigen::Vector3d;
 
@@ -64,10 +64,10 @@ class LevelRefiner {
 
  private:
   void BuildBuckets();
-  EdgeChoice PierceEdge(uint32_t k) const;
+  EdgeChoice PierceEdge(uint32_t k, Chart* chart) const;
   EdgeChoice BoundaryPoint(uint32_t k) const;
   bool InKite(const Vec3d& u, int slot) const;
-  Vec3 ForwardMap(uint32_t root, const Vec3d& u, const Vec3& fallback_near) const;
+  Vec3 ForwardMap(uint32_t root, const Vec3d& u, const Vec3& fallback_near, Chart* chart) const;
   Vec3d EdgePointIn(uint32_t f, int i) const;
   bool ChildrenValid(uint32_t f) const;
   void DemoteInvalidFaces();
@@ -108,7 +108,7 @@ bool LevelRefiner::InKite(const Vec3d& u, int slot) const {
          Orient2d(g, a, p) >= 0.0;
 }
 
-EdgeChoice LevelRefiner::PierceEdge(uint32_t k) const {
+EdgeChoice LevelRefiner::PierceEdge(uint32_t k, Chart* chart) const {
   const EdgeSides& sides = dom_.Sides(k);
   if (sides.right == kNoNeighbour) return BoundaryPoint(k);
   const Edge& e = h_.OddEdge(j_, k);
@@ -122,14 +122,14 @@ EdgeChoice LevelRefiner::PierceEdge(uint32_t k) const {
   EdgeChoice out;
   if (hits.empty()) ++dbg_[0];
   if (!hits.empty()) {
-    const Chart chart(dom_, sides.left, kChartDepth);
+    chart->Reset(sides.left);
     for (const RayHit& hit : hits) {
       const Face& tri = s_.mesh->faces[hit.face];
       Vec3d u = Vec3d::Zero();
       bool mapped = true;
       for (int i = 0; i < 3 && mapped; ++i) {
         Vec3d ui;
-        mapped = chart.Map(params_[tri[i]], &ui);
+        mapped = chart->Map(params_[tri[i]], &ui, kMaxChartFaces);
         u += hit.barycentric[i] * ui;
       }
       if (!mapped) { ++dbg_[1]; continue; }
@@ -177,6 +177,16 @@ EdgeChoice LevelRefiner::BoundaryPoint(uint32_t k) const {
   EdgeChoice out;
   const double w = t1 > t0 ? (0.5 - t0) / (t1 - t0) : 0.5;
   out.position = (1.0 - w) * p0 + w * p1;
+  if (std::getenv("EQ_DEBUG")) {
+    const double d = std::sqrt(s_.bvh->ClosestPoint(out.position).squared_distance);
+    if (d > 1e-9) {
+      std::fprintf(stderr, "boundary edge %u level %d off %.3g chain %zu t0 %.3f t1 %.3f\n", k, j_, d, chain.size(), t0, t1);
+      for (uint32_t n = bucket_offsets_[f]; n < bucket_offsets_[f + 1]; ++n) {
+        const uint32_t x = bucket_items_[n];
+        if (s_.is_boundary[x]) std::fprintf(stderr, "   bx %u bary %.17g %.17g %.17g (a=%d)\n", x, params_[x].bary[0], params_[x].bary[1], params_[x].bary[2], a);
+      }
+    }
+  }
   out.u = Midpoint(a);
   out.kind = VertexKind::kBoundary;
   return out;
@@ -184,12 +194,13 @@ EdgeChoice LevelRefiner::BoundaryPoint(uint32_t k) const {
 
 // Surface point at chart parameter u of face `root`: the input triangle whose
 // chart image contains u.
-Vec3 LevelRefiner::ForwardMap(uint32_t root, const Vec3d& u, const Vec3& fallback_near) const {
-  const Chart chart(dom_, root, kChartDepth);
+Vec3 LevelRefiner::ForwardMap(uint32_t root, const Vec3d& u, const Vec3& fallback_near, Chart* chart) const {
+  chart->Reset(root);
   const Vec2 target = ToReference2d(u);
   double best = -1e300;
   Vec3 best_point = Vec3::Zero();
-  for (uint32_t f : chart.faces()) {
+  for (size_t visit = 0; visit < chart->size() || (visit < kMaxChartFaces && chart->Grow()); ++visit) {
+    const uint32_t f = chart->face(visit);
     for (uint32_t n = bucket_offsets_[f]; n < bucket_offsets_[f + 1]; ++n) {
       const uint32_t x = bucket_items_[n];
       for (uint32_t q = s_.face_offsets[x]; q < s_.face_offsets[x + 1]; ++q) {
@@ -198,7 +209,7 @@ Vec3 LevelRefiner::ForwardMap(uint32_t root, const Vec3d& u, const Vec3& fallbac
         bool mapped = true;
         for (int i = 0; i < 3 && mapped; ++i) {
           Vec3d ui;
-          mapped = chart.Map(params_[tri[i]], &ui);
+          mapped = chart->Map(params_[tri[i]], &ui, kMaxChartFaces);
           c2[i] = ToReference2d(ui);
         }
         Vec3d b;
@@ -211,7 +222,7 @@ Vec3 LevelRefiner::ForwardMap(uint32_t root, const Vec3d& u, const Vec3& fallbac
         }
       }
     }
-    if (best >= -1e-9) break;
+    if (best >= -1e-9 && visit >= 3) break;
   }
   if (best > -0.5) return best_point;
   const ClosestPointResult cp = s_.bvh->ClosestPoint(fallback_near);
@@ -337,16 +348,30 @@ void LevelRefiner::Run(std::vector<Vec3>* positions, std::vector<VertexKind>* ki
   const size_t n_edges = dom_.num_edges();
   choice_.resize(n_edges);
   ParallelFor(n_edges, [&](size_t begin, size_t end, size_t) {
-    for (size_t k = begin; k < end; ++k) choice_[k] = PierceEdge(static_cast<uint32_t>(k));
+    Chart chart(dom_);
+    for (size_t k = begin; k < end; ++k) choice_[k] = PierceEdge(static_cast<uint32_t>(k), &chart);
   });
+  if (std::getenv("EQ_DEBUG")) {
+    Chart chart(dom_);
+    size_t flipped = 0, unmapped = 0;
+    for (const Face& t : s_.mesh->faces) {
+      chart.Reset(params_[t[0]].face);
+      Vec2 c2[3]; bool ok = true;
+      for (int i = 0; i < 3 && ok; ++i) { Vec3d u; ok = chart.Map(params_[t[i]], &u, 4096); c2[i] = ToReference2d(u); }
+      if (!ok) { ++unmapped; continue; }
+      if (Orient2d(c2[0], c2[1], c2[2]) <= 0) ++flipped;
+    }
+    std::fprintf(stderr, "level %d: input triangles flipped in param %zu unmapped %zu of %zu\n", j_, flipped, unmapped, s_.mesh->faces.size());
+  }
   size_t before = 0; for (auto& c : choice_) before += c.kind == VertexKind::kNormal;
   DemoteInvalidFaces();
   size_t after = 0; for (auto& c : choice_) after += c.kind == VertexKind::kNormal;
   if (std::getenv("EQ_DEBUG")) std::fprintf(stderr, "level %d edges %zu nohit %zu unmapped %zu outkite %zu normal %zu after-demote %zu\n", j_, n_edges, dbg_[0].load(), dbg_[1].load(), dbg_[2].load(), before, after);
   ParallelFor(n_edges, [&](size_t begin, size_t end, size_t) {
+    Chart chart(dom_);
     for (size_t k = begin; k < end; ++k) {
       EdgeChoice& c = choice_[k];
-      if (c.needs_forward) c.position = ForwardMap(dom_.Sides(static_cast<uint32_t>(k)).left, c.u, predicted_[k]);
+      if (c.needs_forward) c.position = ForwardMap(dom_.Sides(static_cast<uint32_t>(k)).left, c.u, predicted_[k], &chart);
     }
   });
   std::vector<ParamPoint> next(params_.size());

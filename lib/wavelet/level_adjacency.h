@@ -1,5 +1,6 @@
 // Half-edge adjacency of one level of a semi-regular hierarchy, built from the
-// face list alone so encoder and decoder derive identical stencils.
+// face list alone so encoder and decoder derive identical stencils. Standard
+// half-edge conventions (Mäntylä 1988; Kettner 1999), no paper-specific algorithm.
 //
 // Half-edge h = 3*f + i runs from faces[f][i] to faces[f][(i+1)%3]; no extra
 // storage is needed for from/to/apex. Outgoing half-edges are bucketed per vertex

@@ -262,10 +262,10 @@ TEST(EqCoder, RejectsBadInputs) {
 }
 
 TEST(EqDecoder, EveryTruncatedPrefixIsRejected) {
-  const SemiRegularHierarchy h = IcoHierarchy(4);
-  auto layout = BuildEqLevelLayout(h, 3);
+  const SemiRegularHierarchy h = IcoHierarchy(3);
+  auto layout = BuildEqLevelLayout(h, 2);
   ASSERT_TRUE(layout.ok());
-  const Coded a = EncodeOrDie(*layout, SyntheticCoefficients(h, 3, 3), LambdaForStep(1e-4));
+  const Coded a = EncodeOrDie(*layout, SyntheticCoefficients(h, 2, 3), LambdaForStep(1e-4));
   ASSERT_GT(a.bytes.size(), 100u);
   for (size_t len = 0; len < a.bytes.size(); ++len) {
     auto d = DecodeEqLevel(*layout, a.bytes.data(), len, kQ0);

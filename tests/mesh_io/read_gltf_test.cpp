@@ -2,6 +2,9 @@
 // non-indexed primitives, scene selection and accessor bounds.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <random>
+
 #include "io_test_util.h"
 #include "mesh/mesh_io.h"
 
@@ -31,8 +34,10 @@ std::vector<uint8_t> TriangleBuffer() {
   return b;
 }
 
-std::string Gltf(const std::string& scenes_and_nodes, const std::string& accessors) {
+std::string Gltf(const std::string& scenes_and_nodes, const std::string& accessors,
+                 const std::string& buffer_uri = "") {
   const std::vector<uint8_t> buf = TriangleBuffer();
+  const std::string uri = buffer_uri.empty() ? "data:application/octet-stream;base64," + Base64(buf) : buffer_uri;
   return "{\"asset\":{\"version\":\"2.0\"}," + scenes_and_nodes +
          "\"meshes\":[{\"primitives\":["
          "{\"attributes\":{\"POSITION\":0},\"indices\":1},"
@@ -42,7 +47,7 @@ std::string Gltf(const std::string& scenes_and_nodes, const std::string& accesso
          "\"bufferViews\":[{\"buffer\":0,\"byteOffset\":0,\"byteLength\":36},"
          "{\"buffer\":0,\"byteOffset\":36,\"byteLength\":6}],"
          "\"buffers\":[{\"byteLength\":" + std::to_string(buf.size()) +
-         ",\"uri\":\"data:application/octet-stream;base64," + Base64(buf) + "\"}]}";
+         ",\"uri\":\"" + uri + "\"}]}";
 }
 
 const char* kGoodAccessors =
@@ -115,6 +120,37 @@ TEST(ReadGltf, NodeCycleIsAnError) {
   const char* nodes = "\"scene\":0,\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"children\":[1]},{\"mesh\":0,\"children\":[0]}],";
   auto m = ReadMeshFromBytes(testing::ToBytes(Gltf(nodes, kGoodAccessors)), "gltf", "cycle.gltf");
   EXPECT_FALSE(m.ok());
+}
+
+TEST(ReadGltf, ExternalBufferIsFoundBesideTheFile) {
+  const std::string bin_path = testing::TempPath("tri.bin");
+  testing::WriteFile(bin_path, TriangleBuffer());
+  const std::string bin_name = bin_path.substr(bin_path.find_last_of('/') + 1);
+  const std::string gltf_path = testing::TempPath("external.gltf");
+  testing::WriteFile(gltf_path, Gltf(kScene, kGoodAccessors, bin_name));
+  auto m = ReadMesh(gltf_path);
+  ASSERT_TRUE(m.ok()) << m.status().ToString();
+  EXPECT_EQ(m->num_faces(), 4u);
+  std::remove(bin_path.c_str());
+  auto missing = ReadMesh(gltf_path);
+  ASSERT_FALSE(missing.ok());
+  EXPECT_NE(missing.status().message().find("external.gltf"), std::string::npos);
+  std::remove(gltf_path.c_str());
+}
+
+TEST(ReadGltf, MutatedGlbNeverCrashes) {
+  const auto glb = WriteMeshToBytes(testing::MakeSquare(), "glb");
+  ASSERT_TRUE(glb.ok());
+  std::mt19937 rng(5);
+  for (int trial = 0; trial < 500; ++trial) {
+    std::vector<uint8_t> b = *glb;
+    for (int k = 0; k < 3; ++k) b[rng() % b.size()] = static_cast<uint8_t>(rng());
+    if (trial % 7 == 0) b.resize(rng() % b.size());
+    auto m = ReadMeshFromBytes(b, "glb", "mutant.glb");
+    if (!m.ok()) {
+      EXPECT_NE(m.status().message().find("mutant.glb"), std::string::npos);
+    }
+  }
 }
 
 }  // namespace

@@ -1,10 +1,94 @@
+// Remesher quality on synthetic shapes and small scans: normal share, error,
+// topology kept, no folds.
 #include <gtest/gtest.h>
+
+#include "mesh/mesh_io.h"
 #include "remesh/remesh.h"
+#include "remesh_checks.h"
 #include "test_support.h"
+
 namespace eqmesh {
-TEST(Remesh, Sphere) {
-  RemeshReport r;
-  auto m = Remesh(testing::MakeIcosphere(3), RemeshOptions{3, 12, false, nullptr}, &r);
-  ASSERT_TRUE(m.ok()) << m.status().ToString();
+namespace {
+
+struct RemeshRun {
+  SemiRegularMesh mesh;
+  RemeshReport report;
+};
+
+RemeshRun RemeshOrDie(const Mesh& input, int levels, int base_vertices) {
+  RemeshOptions options;
+  options.levels = levels;
+  options.base_vertices = base_vertices;
+  RemeshRun run;
+  auto result = Remesh(input, options, &run.report);
+  EXPECT_TRUE(result.ok()) << result.status().ToString();
+  if (result.ok()) run.mesh = std::move(result).value();
+  return run;
 }
+
+void ExpectClosedGenus(const SemiRegularMesh& m, int64_t euler) {
+  for (int level = 0; level <= m.hierarchy.levels(); ++level) {
+    const testing::LevelTopology t = testing::CheckLevelTopology(ExtractLevel(m, level));
+    EXPECT_TRUE(t.manifold) << "level " << level;
+    EXPECT_EQ(t.boundary_edges, 0u) << "level " << level;
+    EXPECT_EQ(t.euler, euler) << "level " << level;
+  }
 }
+
+TEST(Remesh, IcosphereIsNormalAccurateAndGenusZero) {
+  const Mesh input = testing::MakeIcosphere(3);
+  const RemeshRun run = RemeshOrDie(input, 3, 24);
+  EXPECT_EQ(run.report.levels, 3);
+  EXPECT_GE(run.report.normal_fraction, 0.95);
+  ExpectClosedGenus(run.mesh, 2);
+  const Mesh finest = ExtractLevel(run.mesh, 3);
+  EXPECT_GT(testing::VertexPsnrDb(input, finest), 55.0);
+  EXPECT_LT(testing::MaxVertexDistance(finest, input), 1e-9);  // vertices lie on the input
+  EXPECT_EQ(testing::CountFlips(finest, input).flipped, 0u);
+}
+
+TEST(Remesh, TorusKeepsGenusOne) {
+  const Mesh input = testing::MakeTorus(40, 20);
+  const RemeshRun run = RemeshOrDie(input, 3, 40);
+  EXPECT_GE(run.report.normal_fraction, 0.9);
+  ExpectClosedGenus(run.mesh, 0);
+  const Mesh finest = ExtractLevel(run.mesh, 3);
+  EXPECT_GT(testing::VertexPsnrDb(input, finest), 50.0);
+  EXPECT_EQ(testing::CountFlips(finest, input).flipped, 0u);
+}
+
+TEST(Remesh, BumpedDiscKeepsItsBoundaryOnTheInputBoundary) {
+  Mesh input = testing::MakeDisc(12);
+  for (Vec3& p : input.positions) p.z() = 0.3 * std::exp(-4.0 * p.squaredNorm());
+  const RemeshRun run = RemeshOrDie(input, 3, 20);
+  EXPECT_EQ(run.report.boundary_loops, 1u);
+  const Mesh finest = ExtractLevel(run.mesh, 3);
+  const testing::LevelTopology t = testing::CheckLevelTopology(finest);
+  EXPECT_TRUE(t.manifold);
+  EXPECT_EQ(t.boundary_loops, 1u);
+  EXPECT_EQ(t.euler, 1);
+  // Boundary vertices sit on the input's boundary polyline.
+  Mesh boundary_points;
+  for (size_t v = 0; v < run.mesh.kinds.size(); ++v) {
+    if (run.mesh.kinds[v] == VertexKind::kBoundary) boundary_points.positions.push_back(run.mesh.positions[v]);
+  }
+  ASSERT_FALSE(boundary_points.positions.empty());
+  EXPECT_LT(testing::MaxVertexDistance(boundary_points, input), 1e-9);
+  EXPECT_GE(run.report.normal_fraction, 0.85);
+}
+
+void CheckSharedMesh(const std::string& name, int64_t euler, double min_normal) {
+  if (!testing::HaveSharedMeshes()) GTEST_SKIP() << "shared meshes absent";
+  auto input = ReadMesh(testing::SharedPath("meshes/small/" + name));
+  ASSERT_TRUE(input.ok()) << input.status().ToString();
+  const RemeshRun run = RemeshOrDie(*input, 3, -1);
+  EXPECT_GE(run.report.normal_fraction, min_normal) << name;
+  EXPECT_LE(run.report.base_vertices, std::max<size_t>(8, input->positions.size() * 3 / 1000 + 1)) << name;
+  ExpectClosedGenus(run.mesh, euler);
+}
+
+TEST(Remesh, BunnyNpmClosedGenusZero) { CheckSharedMesh("bunny_npm.obj", 2, 0.8); }
+TEST(Remesh, RockerArmClosedGenusOne) { CheckSharedMesh("rocker-arm.off", 0, 0.8); }
+
+}  // namespace
+}  // namespace eqmesh

@@ -11,6 +11,7 @@
 namespace eqmesh {
 namespace {
 
+// Largest excess every entry can escape (order 0 is the tightest).
 constexpr int64_t kMaxEscapeExcess = (int64_t{1} << (kEqMaxEscapePrefix + 1)) - 2;
 
 int32_t ClampLog(double v, int32_t lo, int32_t hi) {
@@ -64,7 +65,11 @@ double IndexBits(const QuantizerEntry& e, int64_t q) {
   const int slot = static_cast<int>(std::min<int64_t>(mag, e.max_index));
   double bits = kQuantizerFreqBits - std::log2(static_cast<double>(e.freq[slot]));
   if (mag > 0) bits += 1;
-  if (mag >= e.max_index) bits += 2 * std::floor(std::log2(static_cast<double>(mag - e.max_index + 1))) + 1;
+  if (mag >= e.max_index) {
+    const int k = EscapeOrder(e);
+    const double v = static_cast<double>(mag - e.max_index) / std::exp2(k) + 1.0;
+    bits += 2 * std::floor(std::log2(v)) + 1 + k;
+  }
   return bits;
 }
 
@@ -104,14 +109,19 @@ void EncodeIndex(RangeEncoder* enc, const EqQuantizer& quantizer, int64_t q, EqC
   if (m == 0) return;
   enc->EncodeBits(q < 0 ? 1u : 0u, 1);
   if (m < e.max_index) return;
-  // Exp-Golomb of the excess: p ones on adaptive prefix models, a zero, p bypass bits.
-  const uint64_t v = static_cast<uint64_t>(mag - e.max_index) + 1;
+  // Order-k Exp-Golomb of the excess: p ones on adaptive prefix models, a zero,
+  // then p + k bypass bits.
+  const int k = EscapeOrder(e);
+  const uint64_t v = static_cast<uint64_t>(mag - e.max_index) + (uint64_t{1} << k);
   int p = 0;
-  while ((v >> (p + 1)) != 0) ++p;
+  while ((v >> (p + k + 1)) != 0) ++p;
   auto& prefix = models->prefix[static_cast<int>(ctx)];
   for (int i = 0; i < p; ++i) enc->EncodeBit(&prefix[i], 1);
   enc->EncodeBit(&prefix[p], 0);
-  enc->EncodeBits(static_cast<uint32_t>(v - (uint64_t{1} << p)), p);
+  const int bits = p + k;  // <= 24 + 11: may exceed one 32-bit write
+  const uint64_t suffix = v - (uint64_t{1} << bits);
+  if (bits > 32) enc->EncodeBits(static_cast<uint32_t>(suffix >> 32), bits - 32);
+  enc->EncodeBits(static_cast<uint32_t>(suffix & 0xFFFFFFFFu), bits > 32 ? 32 : bits);
 }
 
 void EncodeClass(RangeEncoder* enc, const EqGgdClass& c) {
@@ -213,6 +223,42 @@ class LevelEncoder {
   double lambda_q0_;
 };
 
+// Steps 5-16: alternate parameter estimation and causal passes until the partition
+// the parameters were estimated from reproduces itself (or repeats: a cycle);
+// returns the side information of lowest estimated cost among those tried.
+EqSideInfo IterateNormalClasses(const LevelEncoder& level, EqSideInfo side, int max_iterations,
+                                EqEncodeStats* stats) {
+  std::vector<Partition> history = {level.InitialPartition()};
+  std::vector<int64_t> recon;
+  EqSideInfo best_side = side;
+  double best_cost = 0;
+  for (int it = 0; it < std::max(1, max_iterations); ++it) {
+    level.EstimateNormalClasses(history.back(), &side);
+    double cost = 0;
+    Partition next = level.Pass(side, nullptr, nullptr, &recon, &cost);
+    if (it == 0 || cost < best_cost) {
+      best_cost = cost;
+      best_side = side;
+    }
+    stats->iterations = it + 1;
+    stats->last_change = 0;
+    for (size_t i = 0; i < next.predictable.size(); ++i) {
+      stats->last_change += next.predictable[i] != history.back().predictable[i];
+    }
+    const auto seen = std::find(history.begin(), history.end(), next);
+    if (seen == history.end() - 1) {
+      stats->converged = true;
+      break;
+    }
+    if (seen != history.end()) {
+      stats->cycle_length = static_cast<int>(history.end() - seen);
+      break;
+    }
+    history.push_back(std::move(next));
+  }
+  return best_side;
+}
+
 Status ValidateInputs(const EqLevelLayout& layout, const std::vector<Vec3>& coeffs, double q0,
                       const EqEncodeOptions& options) {
   const std::string where = "EQ level " + std::to_string(layout.level);
@@ -263,48 +309,17 @@ StatusOr<std::vector<uint8_t>> EncodeEqLevel(const EqLevelLayout& layout,
   EqSideInfo side;
   side.lambda_code = options.lambda_code;
   const int32_t code_limit = 1 << (kEqCodeBits - 1);
-  side.tangential_code = ClampLog(16.0 * std::log2(options.tangential_factor), -code_limit - side.lambda_code,
-                                  code_limit - 1 - side.lambda_code);
+  side.tangential_code = ClampLog(16.0 * std::log2(options.tangential_factor), -code_limit, code_limit - 1);
   side.tangential = tangential.ToClass(kEqMinLogSigma2, kEqMaxLogSigma2);
   const double lambda_q0 = std::exp2(options.lambda_code / 16.0);
   const LevelEncoder level(layout, std::move(normal), lambda_q0);
-
-  // Steps 5-16: alternate parameter estimation and causal passes until the
-  // partition the parameters were estimated from reproduces itself (or repeats).
-  std::vector<Partition> history = {level.InitialPartition()};
   EqEncodeStats local_stats;
-  std::vector<int64_t> recon;
-  EqSideInfo best_side = side;
-  double best_cost = 0;
-  for (int it = 0; it < std::max(1, options.max_iterations); ++it) {
-    level.EstimateNormalClasses(history.back(), &side);
-    double cost = 0;
-    Partition next = level.Pass(side, nullptr, nullptr, &recon, &cost);
-    if (it == 0 || cost < best_cost) {
-      best_cost = cost;
-      best_side = side;
-    }
-    local_stats.iterations = it + 1;
-    local_stats.last_change = 0;
-    for (size_t i = 0; i < n; ++i) {
-      local_stats.last_change += next.predictable[i] != history.back().predictable[i];
-    }
-    const auto seen = std::find(history.begin(), history.end(), next);
-    if (seen == history.end() - 1) {
-      local_stats.converged = true;
-      break;
-    }
-    if (seen != history.end()) {
-      local_stats.cycle_length = static_cast<int>(history.end() - seen);
-      break;
-    }
-    history.push_back(std::move(next));
-  }
-  side = best_side;
+  side = IterateNormalClasses(level, side, options.max_iterations, &local_stats);
 
   RangeEncoder enc;
   EncodeSideInfo(&enc, side, static_cast<uint32_t>(n));
   EqEscapeModels models;
+  std::vector<int64_t> recon;
   const Partition partition = level.Pass(side, &enc, &models, &recon);
   const EqQuantizer tq = TangentialQuantizer(side);
   const double lambda_t = lambda_q0 * std::exp2(side.tangential_code / 16.0);

@@ -29,8 +29,11 @@ namespace eqmesh {
 struct EqEncodeOptions {
   // lambda * q0^2 = 2^(lambda_code / 16); see EqLambdaCode.
   int32_t lambda_code = 0;
-  // lambda of the tangential components = tangential_factor * lambda (seed: 100).
-  double tangential_factor = 100.0;
+  // lambda of the tangential components = tangential_factor * lambda. The seed
+  // says it used "100 lambda" for tangential components because their errors matter
+  // less; with its J = R + lambda D that would quantize them *finer*, so the intent
+  // is a 100x smaller lambda: the default is 1/100.
+  double tangential_factor = 0.01;
   // Bound on the partition iterations (steps 7-16).
   int max_iterations = 12;
 };

@@ -123,6 +123,12 @@ EqQuantizer TangentialQuantizer(const EqSideInfo& side) {
                          side.lambda_code + side.tangential_code);
 }
 
+int EscapeOrder(const QuantizerEntry& entry) {
+  int log2_step = 0;
+  while (log2_step < 31 && (entry.step_q16 >> (log2_step + 1)) != 0) ++log2_step;
+  return std::max(0, 15 - log2_step);
+}
+
 int64_t DecodeIndex(RangeDecoder* dec, const EqQuantizer& quantizer, EqContext ctx,
                     EqEscapeModels* models) {
   if (quantizer.codes_nothing()) return 0;
@@ -144,7 +150,11 @@ int64_t DecodeIndex(RangeDecoder* dec, const EqQuantizer& quantizer, EqContext c
         return 0;
       }
     }
-    mag += (int64_t{1} << p) - 1 + dec->DecodeBits(p);
+    const int k = EscapeOrder(e);
+    const int bits = p + k;  // <= 24 + 11: may exceed one 32-bit read
+    uint64_t suffix = bits > 32 ? static_cast<uint64_t>(dec->DecodeBits(bits - 32)) << 32 : 0;
+    suffix |= dec->DecodeBits(bits > 32 ? 32 : bits);
+    mag += (int64_t{1} << bits) - (int64_t{1} << k) + static_cast<int64_t>(suffix);
   }
   return negative ? -mag : mag;
 }

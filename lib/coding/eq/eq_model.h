@@ -17,7 +17,10 @@
 //  * A coefficient is unpredictable exactly when its causal neighbours all
 //    reconstruct to zero (or it has none), which the decoder can check itself.
 //  * Magnitudes at or beyond the table's open bin M are escaped with an adaptive
-//    Exp-Golomb code of |q| - M (context-modelled prefix, bypass suffix).
+//    Exp-Golomb code of |q| - M (context-modelled prefix, bypass suffix) whose order
+//    k = max(0, 15 - floor(log2 step_q16)) puts 2^k near half a sigma in steps, so
+//    the prefix statistics hardly depend on the step and one model set per class
+//    serves every bucket.
 #pragma once
 
 #include <array>
@@ -30,7 +33,7 @@ namespace eqmesh {
 
 // Reconstructed coefficients are clamped to this many q0 (both sides).
 inline constexpr int64_t kEqMaxCoefficient = int64_t{1} << 28;
-// Escape prefix limit: |q| - M < 2^(kEqMaxEscapePrefix + 1).
+// Escape prefix limit: |q| - M < 2^(kEqMaxEscapePrefix + 1 + order) - 2^order.
 inline constexpr int kEqMaxEscapePrefix = 24;
 // Log-sigma codes are kept inside this range (sigma from 2^-20 to 2^30 q0).
 inline constexpr int32_t kEqMinLogSigma2 = -640;
@@ -94,6 +97,9 @@ EqNormalChoice ChooseNormalQuantizer(const EqSideInfo& side, const int64_t* reco
                                      const uint32_t* neighbours, const uint8_t* rings,
                                      uint32_t count);
 EqQuantizer TangentialQuantizer(const EqSideInfo& side);
+
+// Exp-Golomb order of the escape of an entry (see above).
+int EscapeOrder(const QuantizerEntry& entry);
 
 // Decodes one index; the decoder's error flag reports impossible streams.
 int64_t DecodeIndex(RangeDecoder* dec, const EqQuantizer& quantizer, EqContext ctx,
