@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include <Eigen/Geometry>
+
 namespace eqmesh {
 
 BoundingBox ComputeBoundingBox(const Mesh& mesh) {

@@ -65,6 +65,7 @@ class Simplifier {
   bool GeometryAllows(uint32_t v, size_t p, const Ring& ring, const std::vector<Vec2>& z) const;
   void Apply(uint32_t v, size_t p, const Ring& ring, const std::vector<Vec2>& z);
   Vec2 ChartOf(uint32_t corner, uint32_t v, const Ring& ring, const std::vector<Vec2>& z) const;
+  bool PlaceOnEdge(uint32_t x, uint32_t w1, uint32_t w2, double s, const std::vector<uint32_t>& new_faces);
   bool PlaceBoundaryItem(uint32_t x, const Face& old_face, const Vec2& q, uint32_t v, const Ring& ring,
                          const std::vector<Vec2>& z, const std::vector<uint32_t>& new_faces);
   void PlaceInteriorItem(uint32_t x, const Vec2& q, uint32_t v, const Ring& ring, const std::vector<Vec2>& z,
@@ -326,6 +327,11 @@ bool Simplifier::PlaceBoundaryItem(uint32_t x, const Face& of, const Vec2& q, ui
     if (!(std::abs(span) > 0.0)) return false;
     s = std::clamp((q.x() - z[0].x()) / span, 0.0, 1.0);
   }
+  return PlaceOnEdge(x, w1, w2, s, new_faces);
+}
+
+bool Simplifier::PlaceOnEdge(uint32_t x, uint32_t w1, uint32_t w2, double s,
+                             const std::vector<uint32_t>& new_faces) {
   for (uint32_t f : new_faces) {
     const Face& nf = faces_[f];  // post-collapse corners
     for (int i = 0; i < 3; ++i) {
@@ -430,24 +436,16 @@ void Simplifier::Apply(uint32_t v, size_t p, const Ring& ring, const std::vector
       const size_t k = static_cast<size_t>(std::find(ring.faces.begin(), ring.faces.end(), old_params[i].face) -
                                            ring.faces.begin());
       placed = PlaceBoundaryItem(x, old_corners[k], chart[i], v, ring, z, new_faces);
+      if (!placed && std::getenv("EQ_DEBUG")) {
+        std::fprintf(stderr, "boundary item %u failed: v %u (bnd %d) u %u old face %u %u %u bary %.17g %.17g %.17g closed %d\n", x, v, boundary_[v], u,
+                     old_corners[k][0], old_corners[k][1], old_corners[k][2], old_params[i].bary[0], old_params[i].bary[1], old_params[i].bary[2], ring.closed);
+      }
     } else if (x == v && boundary_[v]) {
       // v itself sits on the chord between its two boundary neighbours.
       const size_t d = ring.verts.size();
       const double span = z[d - 1].x() - z[0].x();
       const double s = std::abs(span) > 0.0 ? std::clamp(-z[0].x() / span, 0.0, 1.0) : 0.5;
-      for (uint32_t f : new_faces) {
-        const Face& nf = faces_[f];
-        for (int c = 0; c < 3 && !placed; ++c) {
-          if (nf[c] == ring.verts[0] && nf[(c + 1) % 3] == ring.verts[d - 1]) {
-            ParamPoint pp{f, {0, 0, 0}};
-            pp.bary[c] = 1.0 - s;
-            pp.bary[(c + 1) % 3] = s;
-            params_[x] = pp;
-            placed = true;
-          }
-        }
-        if (placed) break;
-      }
+      placed = PlaceOnEdge(x, ring.verts[0], ring.verts[d - 1], s, new_faces);
     }
     if (!placed) PlaceInteriorItem(x, chart[i], v, ring, z, new_faces);
     bucket_[params_[x].face].push_back(x);

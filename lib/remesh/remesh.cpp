@@ -133,7 +133,7 @@ size_t AutoBaseTarget(const Prepared& p, const RemeshOptions& options) {
   return std::max(by_fraction, kMinBasePerComponent * p.components_remeshed);
 }
 
-double PsnrDb(double diagonal, double rms) {
+double EstimatedPsnrDb(double diagonal, double rms) {
   if (!(rms > 0.0)) return 200.0;
   return 20.0 * std::log10(diagonal / rms);
 }
@@ -211,7 +211,7 @@ StatusOr<SemiRegularMesh> Remesh(const Mesh& input, const RemeshOptions& options
     const size_t pierced = stats.normal + stats.non_normal;
     report.normal_fraction_per_level.push_back(
         pierced ? static_cast<double>(stats.normal) / static_cast<double>(pierced) : 1.0);
-    report.estimated_psnr_db_per_level.push_back(PsnrDb(diagonal, stats.rms_error));
+    report.estimated_psnr_db_per_level.push_back(EstimatedPsnrDb(diagonal, stats.rms_error));
     ++levels;
   }
   if (levels == 0 || h.levels() != levels) {
