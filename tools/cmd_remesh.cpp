@@ -11,7 +11,9 @@
 #include "mesh/mesh_io.h"
 #include "mesh/semi_regular.h"
 #include "remesh/remesh.h"
+#include "mesh/diagnose.h"
 #include "metrics/surface_distance.h"
+#include "remesh/quality_checks.h"
 #include "tools/command.h"
 
 namespace {
@@ -76,6 +78,7 @@ int RunRemesh(int argc, char** argv) {
   j["input"] = in_path;
   j["output"] = out_path;
   j["input_vertices"] = report.input_vertices;
+  j["input_faces"] = mesh->faces.size();
   j["base_vertices"] = report.base_vertices;
   j["levels"] = report.levels;
   j["output_vertices"] = report.output_vertices;
@@ -96,6 +99,18 @@ int RunRemesh(int argc, char** argv) {
   } else {
     report.notes.push_back("psnr not measured: " + cmp.status().message());
   }
+  auto folds = eqmesh::CountFoldsAgainstInput(finest, *mesh);
+  if (folds.ok()) {
+    j["flipped_faces"] = folds->flipped_faces;
+    j["degenerate_faces"] = folds->degenerate_faces;
+  }
+  const eqmesh::MeshDiagnosis in_diag = eqmesh::Diagnose(*mesh);
+  const eqmesh::MeshDiagnosis out_diag = eqmesh::Diagnose(finest);
+  j["input_closed_genus"] = in_diag.closed_genus;
+  j["output_closed_genus"] = out_diag.closed_genus;
+  j["input_boundary_loops"] = in_diag.boundary_loops;
+  j["output_boundary_loops"] = out_diag.boundary_loops;
+  j["output_manifold"] = out_diag.IsManifold() && out_diag.inconsistent_edges == 0;
   j["notes"] = report.notes;
   std::printf("%s\n", j.dump().c_str());
   return 0;

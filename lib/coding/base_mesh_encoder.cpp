@@ -1,6 +1,10 @@
 #include "coding/base_mesh_encoder.h"
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstring>
+#include <set>
 #include <exception>
 #include <limits>
 #include <memory>
@@ -21,7 +25,7 @@ namespace {
 // Draco connectivity methods we try, smallest output wins.
 constexpr int kDracoMethods[] = {draco::MESH_EDGEBREAKER_ENCODING, draco::MESH_SEQUENTIAL_ENCODING};
 
-std::unique_ptr<draco::Mesh> ToDracoMesh(const Mesh& mesh, bool with_index_probe) {
+std::unique_ptr<draco::Mesh> ToDracoMesh(const Mesh& mesh) {
   auto dm = std::make_unique<draco::Mesh>();
   const uint32_t n = static_cast<uint32_t>(mesh.positions.size());
   dm->set_num_points(n);
@@ -34,16 +38,6 @@ std::unique_ptr<draco::Mesh> ToDracoMesh(const Mesh& mesh, bool with_index_probe
                           static_cast<float>(mesh.positions[i].y()),
                           static_cast<float>(mesh.positions[i].z())};
     dm->attribute(pos_id)->SetAttributeValue(draco::AttributeValueIndex(i), xyz);
-  }
-  if (with_index_probe) {
-    draco::GeometryAttribute idx;
-    idx.Init(draco::GeometryAttribute::GENERIC, nullptr, 1, draco::DT_INT32, false,
-             sizeof(int32_t), 0);
-    const int idx_id = dm->AddAttribute(idx, true, n);
-    for (uint32_t i = 0; i < n; ++i) {
-      const int32_t v = static_cast<int32_t>(i);
-      dm->attribute(idx_id)->SetAttributeValue(draco::AttributeValueIndex(i), &v);
-    }
   }
   for (const Face& f : mesh.faces) {
     dm->AddFace({draco::PointIndex(f[0]), draco::PointIndex(f[1]), draco::PointIndex(f[2])});
@@ -62,56 +56,85 @@ StatusOr<std::vector<uint8_t>> RunDraco(const draco::Mesh& dm, int bits, int met
   return std::vector<uint8_t>(buffer.data(), buffer.data() + buffer.size());
 }
 
-// Decoded vertex -> input vertex, read from the probe's integer attribute.
-StatusOr<std::vector<uint32_t>> ReadProbeMap(const std::vector<uint8_t>& bytes, uint32_t n) {
-  draco::DecoderBuffer buffer;
-  buffer.Init(reinterpret_cast<const char*>(bytes.data()), bytes.size());
-  draco::Decoder decoder;
-  auto decoded = decoder.DecodeMeshFromBuffer(&buffer);
-  if (!decoded.ok()) return InternalError("Draco probe decode failed");
-  const draco::Mesh& dm = *decoded.value();
-  const draco::PointAttribute* idx = dm.GetNamedAttribute(draco::GeometryAttribute::GENERIC);
-  if (idx == nullptr || dm.num_points() != n) {
-    return InternalError("Draco probe changed the vertex count");
+// Decoded vertex -> input vertex by nearest position: each decoded vertex lies
+// within Draco's quantization step of its input vertex. Candidates come from a
+// window on x (inputs sorted by x), so this is O(n log n + n w).
+StatusOr<std::vector<uint32_t>> MatchByPosition(const Mesh& input, const Mesh& decoded,
+                                                double tolerance) {
+  const uint32_t n = static_cast<uint32_t>(input.positions.size());
+  if (decoded.positions.size() != n || decoded.faces.size() != input.faces.size()) {
+    return InternalError("Draco changed the base vertex or face count");
   }
+  std::vector<uint32_t> by_x(n);
+  for (uint32_t i = 0; i < n; ++i) by_x[i] = i;
+  std::sort(by_x.begin(), by_x.end(), [&](uint32_t a, uint32_t b) {
+    return input.positions[a].x() < input.positions[b].x();
+  });
   std::vector<uint32_t> map(n);
-  std::vector<bool> seen(n, false);
+  std::vector<bool> used(n, false);
   for (uint32_t i = 0; i < n; ++i) {
-    int32_t v = -1;
-    idx->ConvertValue<int32_t>(idx->mapped_index(draco::PointIndex(i)), 1, &v);
-    if (v < 0 || static_cast<uint32_t>(v) >= n || seen[v]) {
-      return InternalError("Draco probe map is not a permutation");
+    const Vec3& p = decoded.positions[i];
+    auto it = std::lower_bound(by_x.begin(), by_x.end(), p.x() - tolerance, [&](uint32_t v, double x) {
+      return input.positions[v].x() < x;
+    });
+    double best = tolerance * tolerance;
+    uint32_t best_v = n;
+    for (; it != by_x.end() && input.positions[*it].x() <= p.x() + tolerance; ++it) {
+      const double d = (input.positions[*it] - p).squaredNorm();
+      if (d <= best) {
+        best = d;
+        best_v = *it;
+      }
     }
-    seen[v] = true;
-    map[i] = static_cast<uint32_t>(v);
+    if (best_v == n || used[best_v]) return InternalError("Draco base vertices are not matchable");
+    used[best_v] = true;
+    map[i] = best_v;
   }
   return map;
 }
 
-bool SameMesh(const Mesh& a, const Mesh& b) {
-  if (a.faces != b.faces || a.positions.size() != b.positions.size()) return false;
-  for (size_t i = 0; i < a.positions.size(); ++i) {
-    if (a.positions[i] != b.positions[i]) return false;
+// The map must carry every decoded face onto an input face (as vertex sets).
+bool FacesCorrespond(const Mesh& input, const Mesh& decoded, const std::vector<uint32_t>& map) {
+  auto key = [](uint32_t a, uint32_t b, uint32_t c) {
+    std::array<uint32_t, 3> k{a, b, c};
+    std::sort(k.begin(), k.end());
+    return k;
+  };
+  std::set<std::array<uint32_t, 3>> faces;
+  for (const Face& f : input.faces) faces.insert(key(f[0], f[1], f[2]));
+  for (const Face& f : decoded.faces) {
+    if (faces.erase(key(map[f[0]], map[f[1]], map[f[2]])) != 1) return false;
   }
-  return true;
+  return faces.empty();
 }
 
-StatusOr<DracoMeshEncoding> EncodeWithMethod(const Mesh& mesh, int bits, int method) {
+double QuantizationTolerance(const Mesh& mesh, int bits) {
+  Vec3 lo = mesh.positions[0], hi = mesh.positions[0];
+  for (const Vec3& p : mesh.positions) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  // Draco's step is max extent / (2^bits - 1); a vertex moves <= sqrt(3)/2 steps.
+  // Twice the step plus float32 slack leaves room without admitting neighbours
+  // (the bijection and face checks catch the rest).
+  const double extent = (hi - lo).maxCoeff();
+  return 2.0 * extent / (std::ldexp(1.0, bits) - 1.0) + 1e-6 * (extent + 1.0);
+}
+
+StatusOr<DracoMeshEncoding> EncodeWithMethod(const Mesh& mesh, int bits, int method,
+                                             bool need_map) {
   const uint32_t n = static_cast<uint32_t>(mesh.positions.size());
   const DracoMeshLimits limits{n, mesh.faces.size()};
   DracoMeshEncoding out;
   out.bits = bits;
-  EQMESH_ASSIGN_OR_RETURN(out.bytes, RunDraco(*ToDracoMesh(mesh, false), bits, method));
+  EQMESH_ASSIGN_OR_RETURN(out.bytes, RunDraco(*ToDracoMesh(mesh), bits, method));
   EQMESH_ASSIGN_OR_RETURN(out.decoded, DecodeDracoMesh(out.bytes.data(), out.bytes.size(), limits,
                                                        "base mesh self-check"));
-  EQMESH_ASSIGN_OR_RETURN(std::vector<uint8_t> probe,
-                          RunDraco(*ToDracoMesh(mesh, true), bits, method));
-  EQMESH_ASSIGN_OR_RETURN(out.decoded_to_input, ReadProbeMap(probe, n));
-  EQMESH_ASSIGN_OR_RETURN(Mesh probe_mesh, DecodeDracoMesh(probe.data(), probe.size(), limits,
-                                                           "base mesh probe"));
-  // The map is only valid if the index attribute did not change Draco's traversal.
-  if (!SameMesh(out.decoded, probe_mesh)) {
-    return InternalError("Draco probe traversal differs from the real encoding");
+  if (!need_map) return out;
+  EQMESH_ASSIGN_OR_RETURN(out.decoded_to_input,
+                          MatchByPosition(mesh, out.decoded, QuantizationTolerance(mesh, bits)));
+  if (!FacesCorrespond(mesh, out.decoded, out.decoded_to_input)) {
+    return InternalError("Draco base faces do not match the input faces");
   }
   return out;
 }
@@ -128,7 +151,7 @@ double WeightedError(const Mesh& input, const DracoMeshEncoding& enc,
 
 }  // namespace
 
-StatusOr<DracoMeshEncoding> EncodeMeshWithDraco(const Mesh& mesh, int bits) {
+StatusOr<DracoMeshEncoding> EncodeMeshWithDraco(const Mesh& mesh, int bits, bool need_map) {
   if (mesh.positions.empty() || mesh.faces.empty()) {
     return InvalidArgument("Draco mesh chunk needs at least one face");
   }
@@ -136,7 +159,7 @@ StatusOr<DracoMeshEncoding> EncodeMeshWithDraco(const Mesh& mesh, int bits) {
     Status last = InternalError("no Draco method tried");
     std::optional<DracoMeshEncoding> best;
     for (const int method : kDracoMethods) {
-      auto enc = EncodeWithMethod(mesh, bits, method);
+      auto enc = EncodeWithMethod(mesh, bits, method, need_map);
       if (!enc.ok()) {
         last = enc.status();
         continue;
@@ -150,27 +173,41 @@ StatusOr<DracoMeshEncoding> EncodeMeshWithDraco(const Mesh& mesh, int bits) {
   }
 }
 
+StatusOr<std::vector<DracoMeshEncoding>> EncodeBaseCandidates(const Mesh& base) {
+  std::vector<DracoMeshEncoding> candidates;
+  for (int bits = bitstream::kBaseMinBits; bits <= bitstream::kBaseMaxBits; ++bits) {
+    EQMESH_ASSIGN_OR_RETURN(DracoMeshEncoding enc, EncodeMeshWithDraco(base, bits));
+    candidates.push_back(std::move(enc));
+  }
+  return candidates;
+}
+
+size_t ChooseBaseCandidate(const std::vector<DracoMeshEncoding>& candidates, const Mesh& base,
+                           const std::vector<double>& weights, double lambda_world,
+                           BaseRdReport* report) {
+  size_t best = 0;
+  double best_cost = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < candidates.size(); ++i) {
+    const double rate = 8.0 * static_cast<double>(candidates[i].bytes.size());
+    const double distortion = WeightedError(base, candidates[i], weights);
+    const double cost = rate + lambda_world * distortion;
+    if (cost < best_cost) {
+      best_cost = cost;
+      best = i;
+      if (report) *report = {candidates[i].bits, rate, distortion};
+    }
+  }
+  return best;
+}
+
 StatusOr<DracoMeshEncoding> EncodeBaseMesh(const Mesh& base, const std::vector<double>& weights,
                                            double lambda_world, BaseRdReport* report) {
   if (weights.size() != base.positions.size()) {
     return InternalError("base influence weights do not match the base vertex count");
   }
-  std::optional<DracoMeshEncoding> best;
-  double best_cost = std::numeric_limits<double>::infinity();
-  BaseRdReport best_report;
-  for (int bits = bitstream::kBaseMinBits; bits <= bitstream::kBaseMaxBits; ++bits) {
-    EQMESH_ASSIGN_OR_RETURN(DracoMeshEncoding enc, EncodeMeshWithDraco(base, bits));
-    const double rate = 8.0 * static_cast<double>(enc.bytes.size());
-    const double distortion = WeightedError(base, enc, weights);
-    const double cost = rate + lambda_world * distortion;
-    if (cost < best_cost) {
-      best_cost = cost;
-      best_report = {bits, rate, distortion};
-      best = std::move(enc);
-    }
-  }
-  if (report) *report = best_report;
-  return std::move(*best);
+  EQMESH_ASSIGN_OR_RETURN(std::vector<DracoMeshEncoding> candidates, EncodeBaseCandidates(base));
+  const size_t best = ChooseBaseCandidate(candidates, base, weights, lambda_world, report);
+  return std::move(candidates[best]);
 }
 
 }  // namespace eqmesh

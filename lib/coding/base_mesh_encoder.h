@@ -14,11 +14,14 @@
 // an overestimate at high rates where closed-loop details absorb part of it.
 // lambda_world is the level coder's lambda expressed per squared world unit.
 //
-// Draco reorders vertices and faces (edgebreaker traversal). The encoder learns the
-// permutation with a probe encode that carries each vertex's input index as an
-// extra integer attribute, then checks that the real stream decodes to the same
-// connectivity and positions as the probe; the codec renumbers the semi-regular
-// mesh to the decoded base order (semi_regular_reorder.h).
+// Draco reorders vertices and faces (edgebreaker traversal). The encoder decodes
+// its own chunk and matches each decoded vertex to the input vertex within the
+// quantization tolerance (a bijection is required), then checks that the decoded
+// faces are exactly the input faces under that map; if either fails for a method,
+// the next method is tried. (An extra index attribute would give the map directly,
+// but Draco then numbers points differently from the real, one-attribute stream.)
+// The codec renumbers the semi-regular mesh to the decoded base order
+// (semi_regular_reorder.h).
 #pragma once
 
 #include <cstdint>
@@ -33,12 +36,14 @@ struct DracoMeshEncoding {
   std::vector<uint8_t> bytes;                // the Draco buffer that goes in the stream
   Mesh decoded;                              // exactly what DecodeDracoMesh returns for it
   std::vector<uint32_t> decoded_to_input;    // decoded vertex i was input vertex [i]
+                                             // (empty when no map was asked for)
   int bits = 0;                              // Draco position quantization depth
 };
 
-// One Draco encoding at a fixed depth, with the decoded result and vertex map.
-// Picks the smallest of edgebreaker / sequential connectivity that round-trips.
-StatusOr<DracoMeshEncoding> EncodeMeshWithDraco(const Mesh& mesh, int bits);
+// One Draco encoding at a fixed depth, with the decoded result and (need_map) the
+// vertex map. Picks the smallest of edgebreaker / sequential connectivity that
+// round-trips.
+StatusOr<DracoMeshEncoding> EncodeMeshWithDraco(const Mesh& mesh, int bits, bool need_map = true);
 
 struct BaseRdReport {
   int bits = 0;
@@ -46,7 +51,16 @@ struct BaseRdReport {
   double weighted_distortion = 0;
 };
 
-// The R-D choice described above. weights.size() == base.num_vertices().
+// Every depth of [kBaseMinBits, kBaseMaxBits], in order (independent of lambda, so
+// rate control computes them once).
+StatusOr<std::vector<DracoMeshEncoding>> EncodeBaseCandidates(const Mesh& base);
+
+// Index of the candidate minimising J (weights.size() == base.num_vertices()).
+size_t ChooseBaseCandidate(const std::vector<DracoMeshEncoding>& candidates, const Mesh& base,
+                           const std::vector<double>& weights, double lambda_world,
+                           BaseRdReport* report);
+
+// Both steps at once.
 StatusOr<DracoMeshEncoding> EncodeBaseMesh(const Mesh& base, const std::vector<double>& weights,
                                            double lambda_world, BaseRdReport* report = nullptr);
 

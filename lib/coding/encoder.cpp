@@ -37,6 +37,7 @@ struct Prepared {
   float quantum = 1.0f;
   std::vector<double> base_weights;
   Mesh base;                       // level-0 values to code (input numbering)
+  std::vector<DracoMeshEncoding> base_candidates;  // one per depth
   std::vector<uint8_t> kept_bytes;
 };
 
@@ -125,9 +126,10 @@ StatusOr<Prepared> Prepare(const SemiRegularMesh& mesh, bitstream::TransformId t
   } else {
     p.base.positions = AnalyzeAllLevels(mesh.hierarchy, mesh.positions, transform).values[0];
   }
+  EQMESH_ASSIGN_OR_RETURN(p.base_candidates, EncodeBaseCandidates(p.base));
   if (!mesh.kept_exactly.faces.empty()) {
     EQMESH_ASSIGN_OR_RETURN(DracoMeshEncoding kept,
-                            EncodeMeshWithDraco(mesh.kept_exactly, bitstream::kKeptBits));
+                            EncodeMeshWithDraco(mesh.kept_exactly, bitstream::kKeptBits, false));
     p.kept_bytes = std::move(kept.bytes);
   }
   return p;
@@ -176,8 +178,8 @@ StatusOr<Pass> EncodeAtCode(const Prepared& prep, const EncodeOptions& options, 
 
   Pass pass;
   BaseRdReport base_report;
-  EQMESH_ASSIGN_OR_RETURN(DracoMeshEncoding base,
-                          EncodeBaseMesh(prep.base, prep.base_weights, lambda_world, &base_report));
+  const DracoMeshEncoding& base = prep.base_candidates[ChooseBaseCandidate(
+      prep.base_candidates, prep.base, prep.base_weights, lambda_world, &base_report)];
   EQMESH_ASSIGN_OR_RETURN(const Renumbered* target,
                           RenumberCached(mesh, options.transform, base, cache));
   const SemiRegularHierarchy& h = target->mesh.hierarchy;

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "gltf/buffer_layout.h"
+#include "gltf/placeholder_indices.h"
 #include "mesh/file_bytes.h"
 
 namespace eqmesh::gltf {
@@ -55,12 +56,8 @@ void EmbedLoadedImages(tinygltf::Model* model) {
   }
 }
 
-}  // namespace
-
-StatusOr<tinygltf::Model> ReadGltfModelFromBytes(const std::vector<uint8_t>& bytes,
-                                                 const std::string& name_for_errors,
-                                                 const std::string& base_dir) {
-  if (bytes.size() > 0x7FFFFFFFu) return ResourceLimit(name_for_errors + ": file larger than 2 GiB");
+StatusOr<tinygltf::Model> ParseWithTinygltf(const std::vector<uint8_t>& bytes,
+                                            const std::string& name_for_errors, const std::string& base_dir) {
   tinygltf::TinyGLTF reader;
   reader.SetImageLoader(KeepEncodedImage, nullptr);
   tinygltf::Model model;
@@ -80,6 +77,20 @@ StatusOr<tinygltf::Model> ReadGltfModelFromBytes(const std::vector<uint8_t>& byt
     return ParseError(name_for_errors + ": " + e.what());
   }
   if (!ok) return ParseError(name_for_errors + ": " + FirstLine(err.empty() ? warn : err));
+  return model;
+}
+
+}  // namespace
+
+StatusOr<tinygltf::Model> ReadGltfModelFromBytes(const std::vector<uint8_t>& bytes,
+                                                 const std::string& name_for_errors,
+                                                 const std::string& base_dir) {
+  if (bytes.size() > 0x7FFFFFFFu) return ResourceLimit(name_for_errors + ": file larger than 2 GiB");
+  std::vector<DetachedIndices> detached;
+  auto patched = DetachPlaceholderIndices(bytes, &detached);
+  if (!patched.ok()) return patched.status().WithContext(name_for_errors);
+  EQMESH_ASSIGN_OR_RETURN(tinygltf::Model model, ParseWithTinygltf(*patched, name_for_errors, base_dir));
+  EQMESH_RETURN_IF_ERROR(ReattachPlaceholderIndices(detached, &model).WithContext(name_for_errors));
   return model;
 }
 

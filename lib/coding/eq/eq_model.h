@@ -9,6 +9,23 @@
 //   lambda * q0^2        = 2^(lambda_code / 16)        (D measured in q0^2)
 //   sigma^2 / q0^2       = 2^(log_sigma2 / 16)
 //
+// Normative per-coefficient rules (both halves call these functions):
+//  * sigma-hat^2 of a normal coefficient: S = sum w r^2 over its causal neighbours
+//    (r their reconstructions in q0, w = 4, 2, 1 for rings 1, 2, 3), W = sum w;
+//    log_sigma2_hat = Log2Sixteenths(max(1, floor(S 2^16 / W))) - 256, clamped to
+//    [kEqMinLogSigma2, kEqMaxLogSigma2]; S = 0 (or no neighbour) -> unpredictable.
+//  * predictable: s = log_sigma2_hat + gain; unpredictable / tangential: s = the
+//    class's log_sigma2. Quantizer = table entry (class shape,
+//    QuantizerBucket(lambda_code [+ tangential_code] + s)), scaled by
+//    sigma_q16 = round(2^30 2^((s mod 32) / 32)) shifted by floor(s / 32) - 14.
+//  * reconstruction of index q != 0: sign(q) min(2^28, floor((sigma_q16 *
+//    ReconstructionQ16(|q|) + 2^31) / 2^32)) quanta.
+//  * chunk: side information, then the normal index of every vertex in scan order,
+//    then (tangent, bitangent) indices vertex by vertex in scan order. An index is
+//    the magnitude symbol min(|q|, M) under the entry's frequencies (total 2^15), a
+//    bypass sign bit if non-zero, and the escape when |q| >= M. A class or entry that
+//    codes nothing writes no bits.
+//
 // Departures from the papers:
 //  * sigma-hat is the ring-weighted RMS of the reconstructed causal neighbours
 //    (weights 4, 2, 1 for rings 1, 2, 3) times a per-level gain sent as side

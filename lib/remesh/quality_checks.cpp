@@ -1,0 +1,45 @@
+// Fold and degeneracy counts of a remesh (remeshing.md §7 check 2).
+#include "remesh/quality_checks.h"
+
+#include <mutex>
+
+#include <Eigen/Geometry>
+
+#include "mesh/triangle_bvh.h"
+#include "remesh/parallel_for.h"
+
+namespace eqmesh {
+
+StatusOr<FoldReport> CountFoldsAgainstInput(const Mesh& remesh, const Mesh& input) {
+  EQMESH_ASSIGN_OR_RETURN(TriangleBvh bvh, TriangleBvh::Build(input));
+  const double diag = BoundingBoxDiagonal(input);
+  // Twice the area below which a face counts as degenerate.
+  const double tiny = 1e-14 * diag * diag;
+  FoldReport total;
+  std::mutex lock;
+  ParallelFor(remesh.faces.size(), [&](size_t begin, size_t end, size_t) {
+    FoldReport local;
+    for (size_t i = begin; i < end; ++i) {
+      const Face& f = remesh.faces[i];
+      const Vec3& a = remesh.positions[f[0]];
+      const Vec3& b = remesh.positions[f[1]];
+      const Vec3& c = remesh.positions[f[2]];
+      const Vec3 n = (b - a).cross(c - a);
+      if (n.norm() <= tiny) {
+        ++local.degenerate_faces;
+        continue;
+      }
+      const ClosestPointResult cp = bvh.ClosestPoint((a + b + c) / 3.0);
+      if (!cp.found()) continue;
+      const Face& g = input.faces[cp.face];
+      const Vec3 m = (input.positions[g[1]] - input.positions[g[0]]).cross(input.positions[g[2]] - input.positions[g[0]]);
+      if (m.dot(n) < 0.0) ++local.flipped_faces;
+    }
+    std::lock_guard<std::mutex> guard(lock);
+    total.flipped_faces += local.flipped_faces;
+    total.degenerate_faces += local.degenerate_faces;
+  });
+  return total;
+}
+
+}  // namespace eqmesh
