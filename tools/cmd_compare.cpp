@@ -104,8 +104,9 @@ int RunCompare(int argc, char** argv) {
   app.add_option("original", args.original, "reference mesh (its bbox diagonal is the PSNR peak)")->required();
   app.add_option("other", args.other, "approximation to measure")->required();
   app.add_option("--samples", args.samples,
-                 "samples per direction (default: max(1M, 10 x larger vertex count); limit 1e9)");
-  app.add_option("--seed", args.seed, "sampling seed (same seed, same numbers)");
+                 "samples per direction (default: 10 x larger vertex count, clamped to 1M..20M; limit 1e9)")
+      ->check(CLI::NonNegativeNumber);  // else "-5" wraps to 2^64 - 5
+  app.add_option("--seed", args.seed, "sampling seed (same seed, same numbers)")->check(CLI::NonNegativeNumber);
   app.add_option("--threads", args.threads, "worker threads, 0 = all cores")->check(CLI::Range(0, 1024));
   app.add_flag("--json", args.json, "print one JSON object instead of a table");
   try {

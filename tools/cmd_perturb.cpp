@@ -33,7 +33,7 @@ int RunPerturb(int argc, char** argv) {
   app.add_option("--noise", noise, "displacement as a fraction of the bbox diagonal, e.g. 0.001")
       ->required()
       ->check(CLI::Range(0.0, 1.0));
-  app.add_option("--seed", seed, "random seed");
+  app.add_option("--seed", seed, "random seed")->check(CLI::NonNegativeNumber);
   app.add_flag("--json", json, "print one JSON object describing what was written");
   try {
     app.parse(argc, argv);

@@ -26,5 +26,8 @@ int Fail(const std::string& command, const std::string& message);
 
 }  // namespace eqmesh::cli
 
+#define EQMESH_CLI_CONCAT_INNER(a, b) a##b
+#define EQMESH_CLI_CONCAT(a, b) EQMESH_CLI_CONCAT_INNER(a, b)
+// fn may be any callable expression (qualified names included).
 #define EQMESH_REGISTER_COMMAND(name, summary, fn) \
-  static ::eqmesh::cli::Registrar eqmesh_registrar_##fn({name, summary, fn})
+  static ::eqmesh::cli::Registrar EQMESH_CLI_CONCAT(eqmesh_registrar_, __COUNTER__)({name, summary, fn})

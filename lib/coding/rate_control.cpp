@@ -1,5 +1,6 @@
 #include "coding/rate_control.h"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
@@ -71,8 +72,18 @@ StatusOr<RatePoint> SearchForRate(const RateEvaluator& eval, double target_bpv, 
   RatePoint lo, hi;
   EQMESH_ASSIGN_OR_RETURN(bool bracketed, Bracket(probe, reaches, start_code, &lo, &hi));
   if (consider(lo) || consider(hi) || !bracketed) return *best;
+  bool interpolate = true;
   while (hi.lambda_code - lo.lambda_code > 1 && !probe.exhausted()) {
-    EQMESH_ASSIGN_OR_RETURN(RatePoint mid, probe(lo.lambda_code + (hi.lambda_code - lo.lambda_code) / 2));
+    // log(bpv) is close to linear in the code: interpolate, but alternate with
+    // bisection so a badly curved interval still shrinks geometrically.
+    int64_t next = lo.lambda_code + (hi.lambda_code - lo.lambda_code) / 2;
+    if (interpolate && lo.bpv > 0 && hi.bpv > lo.bpv) {
+      const double t = (std::log(target_bpv) - std::log(lo.bpv)) / (std::log(hi.bpv) - std::log(lo.bpv));
+      next = lo.lambda_code + std::llround(t * static_cast<double>(hi.lambda_code - lo.lambda_code));
+      next = std::clamp(next, lo.lambda_code + 1, hi.lambda_code - 1);
+    }
+    interpolate = !interpolate;
+    EQMESH_ASSIGN_OR_RETURN(RatePoint mid, probe(next));
     if (consider(mid)) return mid;
     (reaches(mid) ? hi : lo) = std::move(mid);
   }

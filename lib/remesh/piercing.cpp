@@ -24,6 +24,12 @@ constexpr double kKiteShrink = 0.9;
 constexpr double kMinChildQuality = 0.15;
 // Largest chart unfolded to reach a hit's input triangle or a midpoint's.
 constexpr size_t kMaxChartFaces = 4096;
+// Parameters follow the closest new triangle (see Project) unless the located
+// one is within this factor of the closest squared distance.
+constexpr bool kProjectParams = true;
+// Rounds of demoting edges of faces whose children fold in 3D.
+constexpr int kFoldRounds = 2;
+constexpr double kProjectionMargin = 1.0;
 
 using Vec3d = Eigen::Vector3d;
 
@@ -71,8 +77,12 @@ class LevelRefiner {
   Vec3d EdgePointIn(uint32_t f, int i) const;
   bool ChildrenValid(uint32_t f) const;
   void DemoteInvalidFaces();
+  void ForwardMapDemoted();
+  bool Folds3d(uint32_t f) const;
+  size_t DemoteFoldedFaces();
   std::array<std::array<Vec3d, 3>, 4> Children(uint32_t f) const;
   ParamPoint Relocate(uint32_t f, uint32_t x) const;
+  ParamPoint Project(uint32_t f, uint32_t x, const ParamPoint& located, const std::vector<Vec3>& fine_pos) const;
   bool RelocateBoundary(uint32_t f, uint32_t x, ParamPoint* out) const;
 
   const SemiRegularHierarchy& h_;
@@ -340,6 +350,87 @@ ParamPoint LevelRefiner::Relocate(uint32_t f, uint32_t x) const {
   return out;
 }
 
+// Re-parameterizes an input vertex by closest-point projection onto the new
+// level's triangles near its located child. Guskov et al. smooth the
+// parameterization between levels; projecting onto the (by now close) remesh
+// is a cheap stand-in that stops the distortion of coarse levels from
+// compounding, because it lets each level's parameter follow the 3D geometry.
+ParamPoint LevelRefiner::Project(uint32_t f, uint32_t x, const ParamPoint& located,
+                                 const std::vector<Vec3>& fine_pos) const {
+  const std::vector<Face>& fine = h_.Faces(j_ + 1);
+  const Vec3& p = s_.mesh->positions[x];
+  ParamPoint best = located;
+  std::array<double, 3> b;
+  const Face& lf = fine[located.face];
+  double best_d = (ClosestPointOnTriangle(p, fine_pos[lf[0]], fine_pos[lf[1]], fine_pos[lf[2]], &b) - p).squaredNorm();
+  best.bary = b;
+  auto consider = [&](uint32_t g) {
+    for (uint32_t c = 0; c < 4; ++c) {
+      const uint32_t child = 4 * g + c;
+      if (child == located.face) continue;
+      const Face& t = fine[child];
+      std::array<double, 3> bb;
+      const double d = (ClosestPointOnTriangle(p, fine_pos[t[0]], fine_pos[t[1]], fine_pos[t[2]], &bb) - p).squaredNorm();
+      if (d < best_d * kProjectionMargin) {
+        best_d = d;
+        best.face = child;
+        best.bary = bb;
+      }
+    }
+  };
+  consider(f);
+  for (int i = 0; i < 3; ++i) {
+    const uint32_t g = dom_.Neighbour(f, i);
+    if (g != kNoNeighbour) consider(g);
+  }
+  return best;
+}
+
+void LevelRefiner::ForwardMapDemoted() {
+  ParallelFor(choice_.size(), [&](size_t begin, size_t end, size_t) {
+    Chart chart(dom_);
+    for (size_t k = begin; k < end; ++k) {
+      EdgeChoice& c = choice_[k];
+      if (!c.needs_forward) continue;
+      c.position = ForwardMap(dom_.Sides(static_cast<uint32_t>(k)).left, c.u, predicted_[k], &chart);
+      c.needs_forward = false;
+    }
+  });
+}
+
+// A child whose 3D normal opposes its parent's is a fold in the making: the
+// parameter test cannot see it where the charts are only approximately
+// consistent (unfolding around extraordinary vertices).
+bool LevelRefiner::Folds3d(uint32_t f) const {
+  const Face& t = dom_.faces()[f];
+  const Vec3 n = (pos_[t[1]] - pos_[t[0]]).cross(pos_[t[2]] - pos_[t[0]]);
+  const Vec3 m01 = choice_[dom_.EdgeOf(f, 0)].position;
+  const Vec3 m12 = choice_[dom_.EdgeOf(f, 1)].position;
+  const Vec3 m20 = choice_[dom_.EdgeOf(f, 2)].position;
+  const Vec3 kids[4][3] = {{pos_[t[0]], m01, m20}, {m01, pos_[t[1]], m12}, {m20, m12, pos_[t[2]]}, {m01, m12, m20}};
+  for (const auto& k : kids) {
+    if ((k[1] - k[0]).cross(k[2] - k[0]).dot(n) <= 0.0) return true;
+  }
+  return false;
+}
+
+size_t LevelRefiner::DemoteFoldedFaces() {
+  size_t demoted = 0;
+  for (uint32_t f = 0; f < dom_.faces().size(); ++f) {
+    if (!Folds3d(f)) continue;
+    for (int i = 0; i < 3; ++i) {
+      const uint32_t k = dom_.EdgeOf(f, i);
+      EdgeChoice& c = choice_[k];
+      if (c.kind != VertexKind::kNormal) continue;
+      c.u = Midpoint(dom_.Sides(k).left_slot);
+      c.kind = VertexKind::kNonNormal;
+      c.needs_forward = true;
+      ++demoted;
+    }
+  }
+  return demoted;
+}
+
 void LevelRefiner::Run(std::vector<Vec3>* positions, std::vector<VertexKind>* kinds, LevelStats* stats) {
   BuildBuckets();
   const StencilTable stencils = BuildButterflyStencils(h_, j_);
@@ -367,23 +458,8 @@ void LevelRefiner::Run(std::vector<Vec3>* positions, std::vector<VertexKind>* ki
   DemoteInvalidFaces();
   size_t after = 0; for (auto& c : choice_) after += c.kind == VertexKind::kNormal;
   if (std::getenv("EQ_DEBUG")) std::fprintf(stderr, "level %d edges %zu nohit %zu unmapped %zu outkite %zu normal %zu after-demote %zu\n", j_, n_edges, dbg_[0].load(), dbg_[1].load(), dbg_[2].load(), before, after);
-  ParallelFor(n_edges, [&](size_t begin, size_t end, size_t) {
-    Chart chart(dom_);
-    for (size_t k = begin; k < end; ++k) {
-      EdgeChoice& c = choice_[k];
-      if (c.needs_forward) c.position = ForwardMap(dom_.Sides(static_cast<uint32_t>(k)).left, c.u, predicted_[k], &chart);
-    }
-  });
-  std::vector<ParamPoint> next(params_.size());
-  const size_t nf = dom_.faces().size();
-  ParallelFor(nf, [&](size_t begin, size_t end, size_t) {
-    for (size_t f = begin; f < end; ++f) {
-      for (uint32_t n = bucket_offsets_[f]; n < bucket_offsets_[f + 1]; ++n) {
-        const uint32_t x = bucket_items_[n];
-        next[x] = Relocate(static_cast<uint32_t>(f), x);
-      }
-    }
-  });
+  ForwardMapDemoted();
+  for (int round = 0; round < kFoldRounds && DemoteFoldedFaces() > 0; ++round) ForwardMapDemoted();
   for (const EdgeChoice& c : choice_) {
     positions->push_back(c.position);
     kinds->push_back(c.kind);
@@ -391,6 +467,17 @@ void LevelRefiner::Run(std::vector<Vec3>* positions, std::vector<VertexKind>* ki
     if (c.kind == VertexKind::kNonNormal) ++stats->non_normal;
     if (c.kind == VertexKind::kBoundary) ++stats->boundary;
   }
+  std::vector<ParamPoint> next(params_.size());
+  const size_t nf = dom_.faces().size();
+  ParallelFor(nf, [&](size_t begin, size_t end, size_t) {
+    for (size_t f = begin; f < end; ++f) {
+      for (uint32_t n = bucket_offsets_[f]; n < bucket_offsets_[f + 1]; ++n) {
+        const uint32_t x = bucket_items_[n];
+        next[x] = Relocate(static_cast<uint32_t>(f), x);
+        if (kProjectParams && !s_.is_boundary[x]) next[x] = Project(static_cast<uint32_t>(f), x, next[x], *positions);
+      }
+    }
+  });
   // Remesh error seen from the input vertices (cheap stand-in for Metro).
   const std::vector<Face>& fine = h_.Faces(j_ + 1);
   std::mutex lock;

@@ -2,12 +2,14 @@
 // determinism, level access, rate control, kept-exactly components, golden stream.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 
 #include "codec_fixtures.h"
 #include "coding/closed_loop.h"
 #include "coding/decoder.h"
 #include "coding/encoder.h"
+#include "metrics/surface_distance.h"
 
 namespace eqmesh {
 namespace {
@@ -134,6 +136,32 @@ TEST(RoundTrip, LargerLambdaGivesLargerStreamAndSmallerError) {
     last_error = error;
     last_size = bytes->size();
   }
+}
+
+TEST(RateControl, PsnrTargetIsMetAndTheReportedPsnrIsReproducible) {
+  const SemiRegularMesh mesh = testing::MakeBumpySphere(3);
+  const Mesh original = ExtractLevel(mesh, 3);
+  EncodeOptions options;
+  options.original = &original;
+  options.target_psnr = 60.0;
+  EncodeReport report;
+  auto bytes = Encode(mesh, options, &report);
+  ASSERT_TRUE(bytes.ok()) << bytes.status().ToString();
+  ASSERT_TRUE(report.psnr_measured);
+  EXPECT_GE(report.psnr_db, 60.0);
+  auto decoded = Decode(bytes->data(), bytes->size());
+  ASSERT_TRUE(decoded.ok());
+  auto distance = CompareSurfaces(original, *decoded);
+  ASSERT_TRUE(distance.ok());
+  EXPECT_DOUBLE_EQ(distance->psnr_db, report.psnr_db);
+  // The next smaller lambda code must miss the target (smallest stream that meets it).
+  EncodeOptions smaller;
+  smaller.lambda = report.lambda * std::exp2(-1.0 / bitstream::kLogCodeScale);
+  smaller.original = &original;
+  smaller.measure_psnr = true;
+  EncodeReport smaller_report;
+  ASSERT_TRUE(Encode(mesh, smaller, &smaller_report).ok());
+  EXPECT_LT(smaller_report.psnr_db, 60.0);
 }
 
 // The golden stream pins the format: re-encoding must reproduce it byte for byte,

@@ -159,13 +159,14 @@ TEST(GltfContainer, CompressedFileKeepsTheSceneAndDropsOldGeometry) {
   gltf::ConvertReport report;
   const std::vector<uint8_t> glb = CompressedRichScene(false, &report);
   EXPECT_EQ(report.compressed, 2u);
-  EXPECT_EQ(report.unchanged, 0u);
+  EXPECT_EQ(report.unchanged, 1u);
+  EXPECT_NE(report.primitives[2].reason.find("samples textures"), std::string::npos) << report.primitives[2].reason;
   auto model = gltf::ReadGltfModelFromBytes(glb, "compressed.glb");
   ASSERT_TRUE(model.ok()) << model.status().ToString();
   const tinygltf::Model original = testing::MakeRichScene();
   EXPECT_EQ(model->extensionsUsed, std::vector<std::string>{kExtensionName});
   EXPECT_EQ(model->extensionsRequired, std::vector<std::string>{kExtensionName});
-  ASSERT_EQ(model->nodes.size(), 3u);
+  ASSERT_EQ(model->nodes.size(), 4u);
   EXPECT_EQ(model->nodes[0].children, std::vector<int>{1});
   EXPECT_EQ(model->nodes[0].translation, original.nodes[0].translation);
   EXPECT_EQ(model->nodes[1].scale, original.nodes[1].scale);
@@ -174,16 +175,22 @@ TEST(GltfContainer, CompressedFileKeepsTheSceneAndDropsOldGeometry) {
   ASSERT_EQ(model->cameras.size(), 1u);
   EXPECT_EQ(model->asset.extras.Get("origin").Get<std::string>(), "gltf_container_test");
   EXPECT_EQ(model->meshes[1].extras.Get("kind").Get<std::string>(), "ring");
-  ASSERT_EQ(model->materials.size(), 1u);
-  EXPECT_EQ(model->materials[0].extras.Get("finish").Get<std::string>(), "matte");
+  ASSERT_EQ(model->materials.size(), 2u);
+  EXPECT_EQ(model->materials[1].extras.Get("finish").Get<std::string>(), "matte");
   EXPECT_EQ(model->materials[0].pbrMetallicRoughness.baseColorTexture.index, 0);
-  EXPECT_EQ(model->meshes[0].primitives[0].material, 0);
+  EXPECT_EQ(model->meshes[0].primitives[0].material, 1);
+  EXPECT_EQ(model->meshes[2].primitives[0].material, 0);
+  EXPECT_EQ(model->meshes[2].primitives[0].attributes.count("TEXCOORD_0"), 1u);
   ASSERT_EQ(model->animations.size(), 1u);
   EXPECT_EQ(model->animations[0].channels[0].target_node, 1);
-  // Buffer views left: 2 streams, the image, the animation's input and output.
-  EXPECT_EQ(model->bufferViews.size(), 5u);
-  for (const tinygltf::Mesh& mesh : model->meshes) {
-    const tinygltf::Primitive& p = mesh.primitives[0];
+  // Buffer views left: 2 streams, the image, the animation's input and output, the
+  // quad's three.
+  EXPECT_EQ(model->bufferViews.size(), 8u);
+  auto quad = gltf::ReadTrianglePrimitive(*model, model->meshes[2].primitives[0]);
+  ASSERT_TRUE(quad.ok()) << quad.status().ToString();
+  EXPECT_EQ(quad->faces.size(), 2u);
+  for (size_t m = 0; m < 2; ++m) {
+    const tinygltf::Primitive& p = model->meshes[m].primitives[0];
     ASSERT_EQ(p.extensions.count(kExtensionName), 1u);
     for (const auto& [semantic, accessor] : p.attributes) {
       EXPECT_EQ(model->accessors[static_cast<size_t>(accessor)].bufferView, -1) << semantic << " is a placeholder";
@@ -219,8 +226,8 @@ TEST(GltfContainer, LoaderRestoresPlainGeometryAndKeepsTheRest) {
   const std::vector<unsigned char> bytes(data.begin() + static_cast<std::ptrdiff_t>(view.byteOffset),
                                          data.begin() + static_cast<std::ptrdiff_t>(view.byteOffset + view.byteLength));
   EXPECT_EQ(bytes, testing::TinyPng());
-  // Streams are gone: image, animation x2, and 3 geometry views per primitive.
-  EXPECT_EQ(model->bufferViews.size(), 3u + 6u);
+  // Streams are gone: image, animation x2, quad x3, and 3 geometry views per primitive.
+  EXPECT_EQ(model->bufferViews.size(), 6u + 6u);
 }
 
 TEST(GltfContainer, MaxLevelGivesEachLevelsVertexCountAndReadsOnlyItsBytes) {
@@ -264,7 +271,7 @@ TEST(GltfContainer, FallbackFileOpensInALoaderWithoutTheExtension) {
   auto loaded = gltf::LoadGltfFromBytes(glb, "fallback.glb", FakeLoad());
   ASSERT_TRUE(loaded.ok()) << loaded.status().ToString();
   EXPECT_TRUE(loaded->extensionsUsed.empty());
-  EXPECT_EQ(loaded->bufferViews.size(), 3u + 6u);
+  EXPECT_EQ(loaded->bufferViews.size(), 6u + 6u);
 }
 
 TEST(GltfContainer, CorruptStreamErrorNamesThePrimitive) {
@@ -318,12 +325,13 @@ TEST(GltfContainer, PrimitivesThatCannotBeRemeshedAreLeftAndReported) {
   model.meshes[1].primitives[0].attributes["TEXCOORD_0"] = model.meshes[1].primitives[0].attributes["NORMAL"];
   gltf::ConvertReport report;
   ASSERT_TRUE(gltf::CompressPrimitives(&model, testing::FakeCompressor(1), {}, &report).ok());
-  ASSERT_EQ(report.primitives.size(), 3u);
+  ASSERT_EQ(report.primitives.size(), 4u);
   EXPECT_TRUE(report.primitives[0].compressed);
   EXPECT_FALSE(report.primitives[1].compressed);
   EXPECT_NE(report.primitives[1].reason.find("not TRIANGLES"), std::string::npos);
   EXPECT_FALSE(report.primitives[2].compressed);
   EXPECT_NE(report.primitives[2].reason.find("TEXCOORD_0"), std::string::npos);
+  EXPECT_FALSE(report.primitives[3].compressed);
   // The line primitive still has its data; the torus is untouched.
   EXPECT_GE(model.accessors[static_cast<size_t>(model.meshes[0].primitives[1].attributes.at("POSITION"))].bufferView, 0);
   EXPECT_TRUE(model.meshes[1].primitives[0].extensions.empty());
@@ -333,6 +341,9 @@ TEST(GltfContainer, PrimitivesThatCannotBeRemeshedAreLeftAndReported) {
   gltf::ConvertReport report2;
   ASSERT_TRUE(gltf::CompressPrimitives(&again, testing::FakeCompressor(1), {false, true}, &report2).ok());
   EXPECT_EQ(report2.compressed, 2u);
+  // The textured quad stays: its material needs TEXCOORD_0.
+  EXPECT_NE(report2.primitives[2].reason.find("material 0 samples textures"), std::string::npos)
+      << report2.primitives[2].reason;
 }
 
 TEST(GltfContainer, FlattenAppliesNodeTransforms) {
@@ -342,7 +353,7 @@ TEST(GltfContainer, FlattenAppliesNodeTransforms) {
   auto mesh = gltf::FlattenToMesh(*model);
   ASSERT_TRUE(mesh.ok()) << mesh.status().ToString();
   const Mesh sphere = testing::MakeIcosphere(1), torus = testing::MakeTorus(8, 6);
-  ASSERT_EQ(mesh->positions.size(), sphere.positions.size() + torus.positions.size());
+  ASSERT_EQ(mesh->positions.size(), sphere.positions.size() + torus.positions.size() + 4);
   // Sphere under parent (translate 1,2,3); torus under child (scale 2) under parent.
   EXPECT_LT((mesh->positions[0] - (sphere.positions[0] + Vec3(1, 2, 3))).norm(), 1e-6);
   const Vec3 t = 2.0 * torus.positions[0] + Vec3(1, 2, 3);

@@ -94,8 +94,46 @@ void AddTexturedMaterial(tinygltf::Model* model) {
   material.name = "painted";
   material.pbrMetallicRoughness.baseColorTexture.index = 0;
   material.pbrMetallicRoughness.baseColorFactor = {0.5, 0.6, 0.7, 1.0};
-  material.extras = Extra("finish", "matte");
   model->materials.push_back(material);
+  tinygltf::Material plain;
+  plain.name = "plain";
+  plain.pbrMetallicRoughness.baseColorFactor = {0.8, 0.3, 0.2, 1.0};
+  plain.extras = Extra("finish", "matte");
+  model->materials.push_back(plain);
+}
+
+// A textured quad (POSITION, TEXCOORD_0, u16 indices): a primitive the converter
+// must leave as it is.
+int AddTexturedQuad(tinygltf::Model* model) {
+  tinygltf::Primitive p;
+  p.attributes["POSITION"] = AddAccessorWithData(model, {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}, TINYGLTF_TYPE_VEC3,
+                                                 TINYGLTF_TARGET_ARRAY_BUFFER);
+  const std::vector<float> uv = {0, 0, 1, 0, 1, 1, 0, 1};
+  const int uv_view = gltf::AppendBufferView(model, reinterpret_cast<const uint8_t*>(uv.data()),
+                                             uv.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
+  tinygltf::Accessor uv_accessor;
+  uv_accessor.bufferView = uv_view;
+  uv_accessor.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+  uv_accessor.type = TINYGLTF_TYPE_VEC2;
+  uv_accessor.count = 4;
+  model->accessors.push_back(uv_accessor);
+  p.attributes["TEXCOORD_0"] = static_cast<int>(model->accessors.size()) - 1;
+  const std::vector<uint16_t> indices = {0, 1, 2, 0, 2, 3};
+  tinygltf::Accessor index_accessor;
+  index_accessor.bufferView = gltf::AppendBufferView(model, reinterpret_cast<const uint8_t*>(indices.data()),
+                                                     indices.size() * 2, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+  index_accessor.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+  index_accessor.type = TINYGLTF_TYPE_SCALAR;
+  index_accessor.count = 6;
+  model->accessors.push_back(index_accessor);
+  p.indices = static_cast<int>(model->accessors.size()) - 1;
+  p.material = 0;
+  p.mode = TINYGLTF_MODE_TRIANGLES;
+  tinygltf::Mesh mesh;
+  mesh.name = "label";
+  mesh.primitives.push_back(p);
+  model->meshes.push_back(mesh);
+  return static_cast<int>(model->meshes.size()) - 1;
 }
 
 void AddAnimation(tinygltf::Model* model, int node) {
@@ -132,12 +170,14 @@ tinygltf::Model MakeRichScene() {
   AddTexturedMaterial(&model);
   const int sphere = AddMesh(&model, MakeIcosphere(1), "sphere");
   const int torus = AddMesh(&model, MakeTorus(8, 6), "torus");
-  model.meshes[static_cast<size_t>(sphere)].primitives[0].material = 0;
+  const int quad = AddTexturedQuad(&model);
+  model.meshes[static_cast<size_t>(sphere)].primitives[0].material = 1;
   model.meshes[static_cast<size_t>(torus)].extras = Extra("kind", "ring");
   tinygltf::Camera camera;
   camera.type = "perspective";
   camera.perspective.yfov = 0.8;
   camera.perspective.znear = 0.1;
+  camera.perspective.zfar = 100.0;
   model.cameras.push_back(camera);
   tinygltf::Node parent, child, eye;
   parent.name = "parent";
@@ -150,9 +190,13 @@ tinygltf::Model MakeRichScene() {
   child.scale = {2.0, 2.0, 2.0};
   eye.name = "eye";
   eye.camera = 0;
-  model.nodes = {parent, child, eye};
+  tinygltf::Node sign;
+  sign.name = "sign";
+  sign.mesh = quad;
+  sign.translation = {0.0, -3.0, 0.0};
+  model.nodes = {parent, child, eye, sign};
   tinygltf::Scene scene;
-  scene.nodes = {0, 2};
+  scene.nodes = {0, 2, 3};
   model.scenes.push_back(scene);
   model.defaultScene = 0;
   AddAnimation(&model, 1);

@@ -15,9 +15,11 @@ namespace eqmesh::testing {
 // 1x1 RGBA PNG (generated for this test; 70 bytes).
 const std::vector<unsigned char>& TinyPng();
 
-// Two meshes (icosphere, torus), a textured material (PNG in a bufferView), a
-// parent/child node hierarchy with TRS, a camera, an animation on the child's
-// translation, and extras on the asset, a node, a mesh and the material.
+// Meshes 0 (icosphere) and 1 (torus), compressible, and 2, a textured quad with
+// TEXCOORD_0 that must stay as it is; materials 0 (textured: PNG in a bufferView)
+// and 1 (plain, on the sphere); nodes parent (sphere, TRS) -> child (torus), eye
+// (camera), sign (quad); an animation on the child's translation; extras on the
+// asset, a node, a mesh and material 1.
 tinygltf::Model MakeRichScene();
 
 // A model holding `mesh` as one TRIANGLES primitive (POSITION + indices).
