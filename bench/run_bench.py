@@ -25,6 +25,7 @@ import struct
 import subprocess
 import sys
 import time
+import types
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
@@ -297,6 +298,7 @@ class Bench:
             self.errors += 1
             log("  ERROR %s %s %s: %s" % (row["codec"], row["variant"], row["param"], row["error"]))
         self.rows.append(row)
+        self.write_csv()  # partial results survive an interrupted sweep
         return row
 
     def compare(self, canon, other, samples):
@@ -307,7 +309,7 @@ class Bench:
     # -------------------------------------------------------------- one mesh
     def mesh(self, path):
         name = os.path.basename(path).split(".")[0]
-        wd = os.path.join(self.args.out, "work", name)
+        wd = os.path.join(self.args.work, name)
         os.makedirs(wd, exist_ok=True)
         log("%s: prepare canonical original" % name)
         canon = os.path.join(wd, "canon.ply")
@@ -575,13 +577,13 @@ PLOT_STYLE = [("eq-lifted", "EQ lifted"), ("eq-unlifted", "EQ unlifted"),
               ("gltfpack", "gltfpack -cc"), ("gltfpack-gzip", "gltfpack -cc + gzip -9")]
 
 
-def plot_mesh(rows, mesh, meta, png, outdir):
+def plot_mesh(rows, mesh, meta, png, workdir):
     """PSNR vs bpv (log x), every codec, remesh ceiling as a dashed line. Needs gnuplot."""
     if not shutil.which("gnuplot"):
         log("gnuplot not found (Debian gnuplot-nox): no plot for %s" % mesh)
         return False
     c = curves(rows, mesh, meta["vertices"])
-    wd = os.path.join(outdir, "work", mesh)
+    wd = os.path.join(workdir, mesh)
     plots = []
     for key, title in PLOT_STYLE:
         if key not in c:
@@ -688,9 +690,9 @@ def write_summary(bench, started, path):
         c = curves(rows, mesh, nv)
         L.append("## %s" % mesh)
         L.append("")
-        L.append("%d referenced vertices (%d unreferenced dropped), %d triangles, %d compare "
+        L.append("%d referenced vertices (%s unreferenced dropped), %d triangles, %d compare "
                  "samples. Remesh: %s levels, %s s, PSNR %s dB (the ceiling of every eqmesh "
-                 "point)." % (nv, meta.get("dropped", 0), meta["triangles"], meta["samples"],
+                 "point)." % (nv, fmt(meta.get("dropped"), "%d"), meta["triangles"], meta["samples"],
                               meta.get("remesh_levels", "?"), fmt(meta.get("remesh_s")),
                               fmt(meta.get("remesh_psnr"))))
         L.append("")
@@ -908,6 +910,63 @@ def write_summary(bench, started, path):
     return path
 
 
+def write_outputs(bench, started):
+    csv_path = bench.write_csv()
+    pngs = []
+    for name in bench.meta:
+        png = os.path.join(bench.args.out, "rd_%s.png" % name)
+        if plot_mesh(bench.rows, name, bench.meta[name], png, bench.args.work):
+            pngs.append(png)
+    summary = write_summary(bench, started, os.path.join(bench.args.out, "summary.md"))
+    return csv_path, summary, pngs
+
+
+def report_from_csv(args):
+    """Rebuilds summary.md and the plots from earlier results.csv files (e.g. meshes run by
+    separate invocations) without running any codec."""
+    args.out = os.path.abspath(args.out)
+    os.makedirs(args.out, exist_ok=True)
+    rows = []
+    for path in args.from_csv:
+        with open(path, newline="") as f:
+            for raw in csv.DictReader(f):
+                row = {}
+                for k in CSV_FIELDS:
+                    v = raw.get(k, "")
+                    if k in ("mesh", "codec", "variant", "error") or v == "":
+                        row[k] = v if v != "" else None
+                        continue
+                    try:
+                        row[k] = int(v)
+                    except ValueError:
+                        try:
+                            row[k] = float(v)
+                        except ValueError:
+                            row[k] = v
+                rows.append(row)
+    bench = types.SimpleNamespace(rows=rows, errors=sum(1 for r in rows if r["error"]), meta={})
+    args.runs = max([r["runs"] for r in rows if isinstance(r["runs"], int)] or [0])
+    args.eqmesh = args.eqmesh or "(from %s)" % ", ".join(args.from_csv)
+    bench.args = args
+    bench.write_csv = lambda: Bench.write_csv(bench)
+    bench.caps = {"zerotree": any((r["variant"] or "").startswith("zerotree") for r in rows),
+                  "srm": False, "convert": True,
+                  "glb": any(r["codec"] == "eqmesh" and r["bytes_glb"] for r in rows)}
+    for r in rows:
+        m = bench.meta.setdefault(r["mesh"], {"name": r["mesh"], "vertices": r["input_vertices"],
+                                              "triangles": r["triangles"], "samples": r["samples"],
+                                              "dropped": None})
+        if r["codec"] == "remesh" and not r["error"]:
+            m.update(remesh_psnr=r["psnr_db"], remesh_s=r["remesh_s"], remesh_levels=r["param"])
+        os.makedirs(os.path.join(args.work, r["mesh"]), exist_ok=True)
+    started = datetime.datetime.fromtimestamp(min(os.path.getmtime(p) for p in args.from_csv))
+    global LOG
+    LOG = open(os.path.join(args.out, "log.txt"), "a")
+    csv_path, summary, pngs = write_outputs(bench, started)
+    log("merged %d rows: wrote %s, %s, %d plot(s)" % (len(rows), csv_path, summary, len(pngs)))
+    return 0
+
+
 def find_eqmesh():
     env = os.environ.get("EQMESH")
     if env:
@@ -930,6 +989,7 @@ def main():
                     help="smoke run: bunny_npm, EQ unlifted at 1 and 4 bpv, Draco qp 10/12 cl 10, "
                          "gltfpack vp 12, one timing run")
     ap.add_argument("--out", default=os.path.join(HERE, "out"), help="output folder")
+    ap.add_argument("--work", help="intermediate files (default OUT/work)")
     ap.add_argument("--eqmesh", help="eqmesh binary (default: $EQMESH or newest build*/tools/eqmesh)")
     ap.add_argument("--runs", type=int, help="timing runs per point, median reported "
                                              "(default 5, quick 1)")
@@ -940,10 +1000,16 @@ def main():
                     help="eqmesh target bpv (default 0.25 0.5 1 2 3 4)")
     ap.add_argument("--qps", type=int, nargs="+",
                     help="Draco -qp and gltfpack -vp values (default 8..16)")
+    ap.add_argument("--from-csv", nargs="+", metavar="CSV",
+                    help="run nothing: merge these results.csv files and rewrite summary.md and "
+                         "the plots in --out")
     ap.add_argument("--skip-large", action="store_true", help="skip dragon_vrip (437k vertices)")
     ap.add_argument("--samples", type=int, help="eqmesh compare --samples for every comparison "
                                                 "(default max(1M, 10 x vertices); quick 200k)")
     args = ap.parse_args()
+    args.work = os.path.abspath(args.work or os.path.join(args.out, "work"))
+    if args.from_csv:
+        return report_from_csv(args)
     args.eqmesh = os.path.abspath(args.eqmesh) if args.eqmesh else find_eqmesh()
     if args.runs is None:
         args.runs = 1 if args.quick else 5
@@ -951,7 +1017,7 @@ def main():
     os.makedirs(args.out, exist_ok=True)
     LOG = open(os.path.join(args.out, "log.txt"), "w")
     global TIME_DIR
-    TIME_DIR = os.path.join(args.out, "work")
+    TIME_DIR = args.work
     os.makedirs(TIME_DIR, exist_ok=True)
     for tool in ("draco_encoder", "draco_decoder", "gltfpack"):
         if not shutil.which(tool):
@@ -974,14 +1040,9 @@ def main():
             bench.mesh(path)
         except (StepError, KeyError, ValueError, OSError) as e:
             bench.add(mesh=os.path.basename(path).split(".")[0], codec="input", error=str(e))
-        bench.write_csv()
-    csv_path = bench.write_csv()
-    pngs = []
-    for name in bench.meta:
-        png = os.path.join(args.out, "rd_%s.png" % name)
-        if plot_mesh(bench.rows, name, bench.meta[name], png, args.out):
-            pngs.append(png)
-    summary = write_summary(bench, started, os.path.join(args.out, "summary.md"))
+        csv_path, summary, pngs = write_outputs(bench, started)  # after each mesh: partial results
+    if not meshes:
+        csv_path, summary, pngs = write_outputs(bench, started)
     log("wrote %s, %s, %d plot(s); %d error(s)" % (csv_path, summary, len(pngs), bench.errors))
     if args.quick and (bench.errors or len(pngs) != len(bench.meta)):
         return 1

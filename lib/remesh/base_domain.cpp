@@ -6,8 +6,6 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <queue>
-#include <cstdio>
-#include <cstdlib>
 
 #include <Eigen/Core>
 
@@ -436,10 +434,6 @@ void Simplifier::Apply(uint32_t v, size_t p, const Ring& ring, const std::vector
       const size_t k = static_cast<size_t>(std::find(ring.faces.begin(), ring.faces.end(), old_params[i].face) -
                                            ring.faces.begin());
       placed = PlaceBoundaryItem(x, old_corners[k], chart[i], v, ring, z, new_faces);
-      if (!placed && std::getenv("EQ_DEBUG")) {
-        std::fprintf(stderr, "boundary item %u failed: v %u (bnd %d) u %u old face %u %u %u bary %.17g %.17g %.17g closed %d\n", x, v, boundary_[v], u,
-                     old_corners[k][0], old_corners[k][1], old_corners[k][2], old_params[i].bary[0], old_params[i].bary[1], old_params[i].bary[2], ring.closed);
-      }
     } else if (x == v && boundary_[v]) {
       // v itself sits on the chord between its two boundary neighbours.
       const size_t d = ring.verts.size();
@@ -519,16 +513,6 @@ StatusOr<BaseDomain> BuildBaseDomain(const Mesh& mesh, const std::vector<uint8_t
   Simplifier s(mesh, is_boundary);
   s.Run(options.target_vertices, options.progress);
   BaseDomain base = s.Extract();
-  if (std::getenv("EQ_DEBUG")) {
-    size_t off = 0, total = 0;
-    for (size_t x = 0; x < base.params.size(); ++x) {
-      if (!is_boundary[x]) continue;
-      ++total;
-      const auto& b = base.params[x].bary;
-      if (b[0] != 0.0 && b[1] != 0.0 && b[2] != 0.0) ++off;
-    }
-    std::fprintf(stderr, "base: boundary input vertices off-edge %zu of %zu\n", off, total);
-  }
   for (const ParamPoint& pp : base.params) {
     if (pp.face >= base.faces.size()) return InternalError("base domain lost an input vertex's parameter");
   }

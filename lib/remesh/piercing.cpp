@@ -5,9 +5,6 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <mutex>
-#include <atomic>
-#include <cstdio>
-#include <cstdlib>
 
 #include "remesh/level_domain.h"
 #include "remesh/parallel_for.h"
@@ -96,8 +93,6 @@ class LevelRefiner {
   std::vector<LocalFrame> frames_;
   std::vector<EdgeChoice> choice_;
   std::vector<ParamPoint> params_out_;
- public:
-  mutable std::atomic<size_t> dbg_[4] = {};
 };
 
 void LevelRefiner::BuildBuckets() {
@@ -130,7 +125,6 @@ EdgeChoice LevelRefiner::PierceEdge(uint32_t k, Chart* chart) const {
   std::sort(hits.begin(), hits.end(),
             [reach](const RayHit& x, const RayHit& y) { return std::abs(x.t - reach) < std::abs(y.t - reach); });
   EdgeChoice out;
-  if (hits.empty()) ++dbg_[0];
   if (!hits.empty()) {
     chart->Reset(sides.left);
     for (const RayHit& hit : hits) {
@@ -142,8 +136,7 @@ EdgeChoice LevelRefiner::PierceEdge(uint32_t k, Chart* chart) const {
         mapped = chart->Map(params_[tri[i]], &ui, kMaxChartFaces);
         u += hit.barycentric[i] * ui;
       }
-      if (!mapped) { ++dbg_[1]; continue; }
-      if (!InKite(u, sides.left_slot)) { ++dbg_[2]; continue; }
+      if (!mapped || !InKite(u, sides.left_slot)) continue;
       out.position = p + (hit.t - reach) * n;
       out.u = u;
       out.kind = VertexKind::kNormal;
@@ -187,16 +180,6 @@ EdgeChoice LevelRefiner::BoundaryPoint(uint32_t k) const {
   EdgeChoice out;
   const double w = t1 > t0 ? (0.5 - t0) / (t1 - t0) : 0.5;
   out.position = (1.0 - w) * p0 + w * p1;
-  if (std::getenv("EQ_DEBUG")) {
-    const double d = std::sqrt(s_.bvh->ClosestPoint(out.position).squared_distance);
-    if (d > 1e-9) {
-      std::fprintf(stderr, "boundary edge %u level %d off %.3g chain %zu t0 %.3f t1 %.3f\n", k, j_, d, chain.size(), t0, t1);
-      for (uint32_t n = bucket_offsets_[f]; n < bucket_offsets_[f + 1]; ++n) {
-        const uint32_t x = bucket_items_[n];
-        if (s_.is_boundary[x]) std::fprintf(stderr, "   bx %u bary %.17g %.17g %.17g (a=%d)\n", x, params_[x].bary[0], params_[x].bary[1], params_[x].bary[2], a);
-      }
-    }
-  }
   out.u = Midpoint(a);
   out.kind = VertexKind::kBoundary;
   return out;
@@ -442,22 +425,7 @@ void LevelRefiner::Run(std::vector<Vec3>* positions, std::vector<VertexKind>* ki
     Chart chart(dom_);
     for (size_t k = begin; k < end; ++k) choice_[k] = PierceEdge(static_cast<uint32_t>(k), &chart);
   });
-  if (std::getenv("EQ_DEBUG")) {
-    Chart chart(dom_);
-    size_t flipped = 0, unmapped = 0;
-    for (const Face& t : s_.mesh->faces) {
-      chart.Reset(params_[t[0]].face);
-      Vec2 c2[3]; bool ok = true;
-      for (int i = 0; i < 3 && ok; ++i) { Vec3d u; ok = chart.Map(params_[t[i]], &u, 4096); c2[i] = ToReference2d(u); }
-      if (!ok) { ++unmapped; continue; }
-      if (Orient2d(c2[0], c2[1], c2[2]) <= 0) ++flipped;
-    }
-    std::fprintf(stderr, "level %d: input triangles flipped in param %zu unmapped %zu of %zu\n", j_, flipped, unmapped, s_.mesh->faces.size());
-  }
-  size_t before = 0; for (auto& c : choice_) before += c.kind == VertexKind::kNormal;
   DemoteInvalidFaces();
-  size_t after = 0; for (auto& c : choice_) after += c.kind == VertexKind::kNormal;
-  if (std::getenv("EQ_DEBUG")) std::fprintf(stderr, "level %d edges %zu nohit %zu unmapped %zu outkite %zu normal %zu after-demote %zu\n", j_, n_edges, dbg_[0].load(), dbg_[1].load(), dbg_[2].load(), before, after);
   ForwardMapDemoted();
   for (int round = 0; round < kFoldRounds && DemoteFoldedFaces() > 0; ++round) ForwardMapDemoted();
   for (const EdgeChoice& c : choice_) {

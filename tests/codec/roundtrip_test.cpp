@@ -139,16 +139,17 @@ TEST(RoundTrip, LargerLambdaGivesLargerStreamAndSmallerError) {
 }
 
 TEST(RateControl, PsnrTargetIsMetAndTheReportedPsnrIsReproducible) {
-  const SemiRegularMesh mesh = testing::MakeBumpySphere(3);
-  const Mesh original = ExtractLevel(mesh, 3);
+  // Two levels keep the Metro-style measurements of the search short.
+  const SemiRegularMesh mesh = testing::MakeBumpySphere(2);
+  const Mesh original = ExtractLevel(mesh, 2);
   EncodeOptions options;
   options.original = &original;
-  options.target_psnr = 60.0;
+  options.target_psnr = 55.0;
   EncodeReport report;
   auto bytes = Encode(mesh, options, &report);
   ASSERT_TRUE(bytes.ok()) << bytes.status().ToString();
   ASSERT_TRUE(report.psnr_measured);
-  EXPECT_GE(report.psnr_db, 60.0);
+  EXPECT_GE(report.psnr_db, 55.0);
   auto decoded = Decode(bytes->data(), bytes->size());
   ASSERT_TRUE(decoded.ok());
   auto distance = CompareSurfaces(original, *decoded);
@@ -161,7 +162,7 @@ TEST(RateControl, PsnrTargetIsMetAndTheReportedPsnrIsReproducible) {
   smaller.measure_psnr = true;
   EncodeReport smaller_report;
   ASSERT_TRUE(Encode(mesh, smaller, &smaller_report).ok());
-  EXPECT_LT(smaller_report.psnr_db, 60.0);
+  EXPECT_LT(smaller_report.psnr_db, 55.0);
 }
 
 // The golden stream pins the format: re-encoding must reproduce it byte for byte,
