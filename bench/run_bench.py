@@ -29,6 +29,7 @@ import types
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
+sys.dont_write_bytecode = True  # no __pycache__ in the source tree
 sys.path.insert(0, HERE)
 import bdrate  # noqa: E402
 
@@ -870,9 +871,19 @@ def write_summary(bench, started, path):
             eb = c.get("eq-best", [])
             why = ("eqmesh reaches at most %.2f dB" % max(p for _, p in eb)) if eb and \
                 bdrate.rate_at_psnr(eb, target) is None else "Draco does not cover it"
+            verdict = None if r is None else r >= need
+            detail = "%.2fx" % r if r is not None else "not measurable: " + why
+            drate = bdrate.rate_at_psnr(c.get("draco-best", []), target)
+            if r is None and eb and drate is not None and bdrate.rate_at_psnr(eb, target) is None \
+                    and max(p for _, p in eb) < target and max(b for b, _ in eb) >= drate / need:
+                # We measured up to the rate the target allows and never reached the PSNR.
+                verdict = False
+                detail = ("eqmesh stays below %g dB (max %.2f dB) up to %.2f bpv, while %gx smaller "
+                          "than Draco would be %.2f bpv (Draco: %.2f bpv)" % (
+                              target, max(p for _, p in eb), max(b for b, _ in eb), need,
+                              drate / need, drate))
             checks.append(("at %g dB our stream >= %gx smaller than Draco's best (%s)" % (
-                target, need, mesh), None if r is None else r >= need,
-                "%.2fx" % r if r is not None else "not measurable: " + why))
+                target, need, mesh), verdict, detail))
         small = meta["triangles"] < 20000
         if small:
             A.append("%d triangles is too few to judge speed per triangle (process start-up and "
@@ -896,7 +907,11 @@ def write_summary(bench, started, path):
                                        detail))
     fails = [t for t, ok, _ in checks if ok is False]
     L.append("")
+    nas = [t for t, ok, _ in checks if ok is None]
     L.append("Failing: " + ("; ".join(fails) if fails else "none") + ".")
+    if nas:
+        L.append("")
+        L.append("Not measurable in this run (%d): %s." % (len(nas), "; ".join(nas)))
     errs = [r for r in rows if r["error"]]
     if errs:
         L.append("")

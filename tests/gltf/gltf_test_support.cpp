@@ -207,7 +207,6 @@ tinygltf::Model MakeSingleMeshModel(const Mesh& mesh) {
   tinygltf::Model model;
   model.asset.version = "2.0";
   AddMesh(&model, mesh, "only");
-  model.meshes[0].primitives[0].attributes.erase("NORMAL");
   tinygltf::Node node;
   node.mesh = 0;
   model.nodes.push_back(node);

@@ -22,7 +22,7 @@ const std::vector<unsigned char>& TinyPng();
 // asset, a node, a mesh and material 1.
 tinygltf::Model MakeRichScene();
 
-// A model holding `mesh` as one TRIANGLES primitive (POSITION + indices).
+// A model holding `mesh` as one TRIANGLES primitive (POSITION, NORMAL, indices).
 tinygltf::Model MakeSingleMeshModel(const Mesh& mesh);
 
 // A fresh path under the build tree (removed by nothing: the build dir is scratch).
