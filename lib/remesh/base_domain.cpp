@@ -19,7 +19,7 @@ constexpr uint32_t kNone = 0xffffffffu;
 constexpr size_t kMaxValence = 12;
 // Weight of the size term against the quadric error: makes flat regions
 // decimate evenly instead of in arbitrary order (MAPS's area weight).
-constexpr double kSizeWeight = 0.2;
+constexpr double kSizeWeight = 0.02;
 // A collapse may not turn a face by more than ~80 degrees (no normal flips).
 constexpr double kMinNormalCos = 0.17;
 // Minimum 3D triangle quality 4*sqrt(3)*A / sum(l^2) a collapse may create,
