@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The main job on the bundled sample: installs what is missing, builds (Release),
-# then diagnoses samples/meshes/blob.obj, makes a noisy copy and measures its error.
+# diagnoses samples/meshes/blob.obj, then remeshes + encodes it at 2 bits per input
+# vertex, decodes the stream and measures the decoded mesh against the original.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup-debian.sh
@@ -11,6 +12,9 @@ mkdir -p "$OUT"
 SAMPLE=samples/meshes/blob.obj
 echo "== eqmesh info $SAMPLE"
 "$EQ" info "$SAMPLE"
-echo "== eqmesh perturb (0.1 % of the diagonal) and compare"
-"$EQ" perturb "$SAMPLE" "$OUT/blob_noisy.ply" --noise 0.001
-"$EQ" compare "$SAMPLE" "$OUT/blob_noisy.ply"
+echo "== eqmesh encode (remesh + EQ coder, 2 bits per input vertex)"
+"$EQ" encode "$SAMPLE" "$OUT/blob.eqm" --bpv 2
+echo "== eqmesh decode"
+"$EQ" decode "$OUT/blob.eqm" "$OUT/blob_decoded.ply"
+echo "== eqmesh compare (original vs decoded)"
+"$EQ" compare "$SAMPLE" "$OUT/blob_decoded.ply"
