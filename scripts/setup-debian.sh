@@ -8,7 +8,7 @@ PACKAGES=(
   build-essential cmake ninja-build pkg-config git
   libtinygltf-dev libdraco-dev draco libeigen3-dev
   libgtest-dev googletest libcli11-dev nlohmann-json3-dev zlib1g-dev libstb-dev
-  gltfpack gzip python3 time
+  gltfpack gzip python3 time gnuplot-nox
 )
 # Optional extras for the validator and the benchmark plots (issue 5/6 tooling).
 if [[ "${EQMESH_SETUP_EXTRAS:-0}" == "1" ]]; then
