@@ -1,4 +1,5 @@
-// eqmesh decode IN.eqm OUT.(ply|obj|off|glb): stream -> mesh at any level.
+// eqmesh decode IN.(eqm|glb|gltf) OUT.(ply|obj|off|glb): stream or compressed glTF ->
+// plain mesh / plain glTF at any level.
 #include <chrono>
 #include <cstdio>
 #include <string>
@@ -7,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "coding/decoder.h"
+#include "gltf/gltf_loader.h"
 #include "mesh/file_bytes.h"
 #include "mesh/mesh_io.h"
 #include "tools/command.h"
@@ -18,12 +20,44 @@ constexpr const char* kName = "decode";
 // Streams are small; refuse anything that could not be one before reading it all.
 constexpr uint64_t kMaxStreamBytes = uint64_t{1} << 31;
 
+bool EndsWith(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+// Compressed glTF in: decode every EXT_normal_mesh_compression primitive. A .glb
+// output keeps the whole scene as plain glTF; OBJ/PLY/OFF get the flattened geometry.
+int DecodeGltf(const std::string& in_path, const std::string& out_path, int level, bool json) {
+  gltf::LoadOptions options;
+  options.max_level = level;
+  const auto start = std::chrono::steady_clock::now();
+  auto model = gltf::LoadGltf(in_path, options);
+  if (!model.ok()) return Fail(kName, model.status().message());
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  auto flat = gltf::FlattenToMesh(*model);
+  if (!flat.ok()) return Fail(kName, in_path + ": " + flat.status().message());
+  const Status written =
+      EndsWith(out_path, ".glb") ? gltf::WriteDecodedGlb(*model, out_path) : WriteMesh(*flat, out_path);
+  if (!written.ok()) return Fail(kName, written.message());
+  if (json) {
+    nlohmann::json j;
+    j["input"] = in_path;
+    j["output"] = out_path;
+    j["vertices"] = flat->positions.size();
+    j["faces"] = flat->faces.size();
+    j["decode_seconds"] = seconds;
+    std::printf("%s\n", j.dump(2).c_str());
+  } else {
+    std::printf("%s: %zu vertices, %zu faces\n", out_path.c_str(), flat->positions.size(), flat->faces.size());
+  }
+  return 0;
+}
+
 int RunDecode(int argc, char** argv) {
   CLI::App app{"Decode an eqmesh stream (.eqm) to a mesh", argv[0]};
   std::string in_path, out_path;
   int level = -1;
   bool json = false, allow_truncated = false;
-  app.add_option("IN", in_path, "eqmesh stream (.eqm)")->required();
+  app.add_option("IN", in_path, "eqmesh stream (.eqm) or glTF with EXT_normal_mesh_compression (.glb .gltf)")->required();
   app.add_option("OUT", out_path, "output mesh (.ply .obj .off .glb)")->required();
   app.add_option("--level", level, "decode up to this level (-1: all)")->check(CLI::Range(-1, 64));
   app.add_flag("--allow-truncated", allow_truncated,
@@ -34,6 +68,7 @@ int RunDecode(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
+  if (EndsWith(in_path, ".glb") || EndsWith(in_path, ".gltf")) return DecodeGltf(in_path, out_path, level, json);
   auto bytes = ReadFileBytes(in_path, kMaxStreamBytes);
   if (!bytes.ok()) return Fail(kName, bytes.status().message());
   const auto start = std::chrono::steady_clock::now();

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "coding/encoder.h"
+#include "gltf/gltf_converter.h"
 #include "mesh/mesh_io.h"
 #include "remesh/remesh.h"
 #include "tools/command.h"
@@ -23,7 +24,7 @@ struct EncodeArgs {
   double bpv = 0, lambda = 0, psnr = 0, tangential_factor = 100.0;
   std::string transform = "unlifted", coder = "eq";
   int levels = -1, base_vertices = -1;
-  bool repair = false, measure = false, json = false;
+  bool repair = false, measure = false, json = false, fallback = false;
 };
 
 double SecondsSince(std::chrono::steady_clock::time_point start) {
@@ -81,11 +82,62 @@ nlohmann::json ToJson(const EncodeArgs& a, const RemeshReport& remesh, const Enc
   return j;
 }
 
+nlohmann::json ToJson(const gltf::PrimitiveOutcome& p) {
+  nlohmann::json j;
+  j["mesh"] = p.mesh;
+  j["primitive"] = p.primitive;
+  j["compressed"] = p.compressed;
+  if (!p.compressed) j["reason"] = p.reason;
+  j["input_vertices"] = p.input_vertices;
+  j["output_vertices"] = p.output_vertices;
+  j["stream_bytes"] = p.stream_bytes;
+  j["levels"] = p.levels;
+  if (p.psnr_db > 0) j["psnr_db"] = p.psnr_db;
+  return j;
+}
+
+// glTF output: every remeshable TRIANGLES primitive becomes an
+// EXT_normal_mesh_compression stream; the rest of the scene is kept.
+int EncodeToGlb(const EncodeArgs& a) {
+  gltf::ConvertOptions options;
+  options.codec = ToEncodeOptions(a);
+  options.remesh.levels = a.levels;
+  options.remesh.base_vertices = a.base_vertices;
+  options.remesh.repair = a.repair;
+  options.fallback = a.fallback;
+  const auto start = std::chrono::steady_clock::now();
+  auto report = gltf::ConvertToCompressedGltf(a.in_path, a.out_path, options);
+  if (!report.ok()) return Fail(kName, report.status().message());
+  for (const auto& p : report->primitives) {
+    if (!p.compressed) {
+      std::fprintf(stderr, "eqmesh encode: mesh %d primitive %d left unchanged: %s\n", p.mesh, p.primitive,
+                   p.reason.c_str());
+    }
+  }
+  if (a.json) {
+    nlohmann::json j;
+    j["input"] = a.in_path;
+    j["output"] = a.out_path;
+    j["compressed"] = report->compressed;
+    j["unchanged"] = report->unchanged;
+    j["input_bytes"] = report->input_bytes;
+    j["bytes"] = report->output_bytes;
+    j["primitives"] = nlohmann::json::array();
+    for (const auto& p : report->primitives) j["primitives"].push_back(ToJson(p));
+    j["seconds"] = SecondsSince(start);
+    std::printf("%s\n", j.dump(2).c_str());
+  } else {
+    std::printf("%s: %llu bytes, %zu primitive(s) compressed, %zu unchanged\n", a.out_path.c_str(),
+                static_cast<unsigned long long>(report->output_bytes), report->compressed, report->unchanged);
+  }
+  return 0;
+}
+
 int RunEncode(int argc, char** argv) {
   CLI::App app{"Encode a mesh into an eqmesh stream (.eqm)", argv[0]};
   EncodeArgs a;
   app.add_option("IN", a.in_path, "input mesh (.obj .ply .off .gltf .glb, optionally .gz)")->required();
-  app.add_option("OUT", a.out_path, "output stream (.eqm)")->required();
+  app.add_option("OUT", a.out_path, "output: .eqm stream, or .glb with EXT_normal_mesh_compression")->required();
   auto* bpv = app.add_option("--bpv", a.bpv, "target bits per input vertex (within 3 %)")
                   ->check(CLI::Range(1e-3, 1e4));
   auto* lambda = app.add_option("--lambda", a.lambda, "R-D slope (dimensionless, see encoder.h)")
@@ -106,17 +158,17 @@ int RunEncode(int argc, char** argv) {
       ->check(CLI::Range(-1, 1 << 30));
   app.add_flag("--repair", a.repair, "repair non-manifold / misoriented input instead of refusing it");
   app.add_flag("--measure", a.measure, "decode the stream and report its PSNR against the input");
+  app.add_flag("--fallback", a.fallback,
+               ".glb output: also store uncompressed geometry for loaders without the extension");
   app.add_flag("--json", a.json, "print one JSON object with the report");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
-  if (EndsWith(a.out_path, ".glb") || EndsWith(a.out_path, ".gltf")) {
-    return Fail(kName, a.out_path + ": glTF output (EXT_normal_mesh_compression) is written by the "
-                       "glTF converter, not by this command yet; write a .eqm stream");
-  }
   if (a.base_vertices == 0) return Fail(kName, "--base-vertices must be positive or -1");
+  if (EndsWith(a.out_path, ".gltf")) return Fail(kName, a.out_path + ": write .glb (binary glTF) or .eqm");
+  if (EndsWith(a.out_path, ".glb")) return EncodeToGlb(a);
 
   auto mesh = ReadMesh(a.in_path);
   if (!mesh.ok()) return Fail(kName, mesh.status().message());
@@ -159,6 +211,6 @@ int RunEncode(int argc, char** argv) {
 
 }  // namespace
 
-EQMESH_REGISTER_COMMAND("encode", "encode a mesh into an eqmesh stream (.eqm)", RunEncode);
+EQMESH_REGISTER_COMMAND("encode", "encode a mesh into an eqmesh stream (.eqm) or a compressed .glb", RunEncode);
 
 }  // namespace eqmesh::cli
