@@ -14,7 +14,10 @@ SemiRegularMesh MakeSample() {
   SemiRegularMesh m;
   m.hierarchy = *SemiRegularHierarchy::Build(12, ico.faces, 2);
   m.positions.resize(m.hierarchy.NumVertices(2));
-  for (size_t i = 0; i < m.positions.size(); ++i) m.positions[i] = Vec3(0.1 * i, 1.0 / (i + 1), -3.0 * i);
+  for (size_t i = 0; i < m.positions.size(); ++i) {
+    const double x = static_cast<double>(i);
+    m.positions[i] = Vec3(0.1 * x, 1.0 / (x + 1.0), -3.0 * x);
+  }
   m.kinds.assign(m.positions.size(), VertexKind::kNormal);
   m.kinds[0] = VertexKind::kBase;
   m.kept_exactly.positions = {{1, 2, 3}, {4, 5, 6}, {7, 8, 10}};
