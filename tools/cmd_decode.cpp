@@ -110,6 +110,6 @@ int RunDecode(int argc, char** argv) {
 
 }  // namespace
 
-EQMESH_REGISTER_COMMAND("decode", "decode an eqmesh stream (.eqm) to a mesh", RunDecode);
+EQMESH_REGISTER_COMMAND("decode", "decode an eqmesh stream (.eqm) or compressed .glb to a plain mesh / glTF", RunDecode);
 
 }  // namespace eqmesh::cli
