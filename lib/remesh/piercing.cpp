@@ -21,12 +21,6 @@ constexpr double kKiteShrink = 0.9;
 constexpr double kMinChildQuality = 0.15;
 // Largest chart unfolded to reach a hit's input triangle or a midpoint's.
 constexpr size_t kMaxChartFaces = 4096;
-// Parameters follow the closest new triangle (see Project) unless the located
-// one is within this factor of the closest squared distance.
-constexpr bool kProjectParams = false;  // off: horse 86.9 -> 60 dB (spikes), see bench/README_remesh.md
-// Rounds of demoting edges of faces whose children fold in 3D.
-constexpr int kFoldRounds = 0;  // off: with projection it did not remove the folds that matter
-constexpr double kProjectionMargin = 1.0;
 
 using Vec3d = Eigen::Vector3d;
 
@@ -58,9 +52,9 @@ void ClampBary(Vec3d* b) {
 
 class LevelRefiner {
  public:
-  LevelRefiner(const SemiRegularHierarchy& h, int j, const InputSurface& s, std::vector<Vec3>* positions,
-               std::vector<ParamPoint>* params)
-      : h_(h), j_(j), s_(s), dom_(h, j), pos_(*positions), params_(*params) {}
+  LevelRefiner(const SemiRegularHierarchy& h, int j, const InputSurface& s, const RefineOptions& options,
+               std::vector<Vec3>* positions, std::vector<ParamPoint>* params)
+      : h_(h), j_(j), s_(s), options_(options), dom_(h, j), pos_(*positions), params_(*params) {}
 
   void Run(std::vector<Vec3>* positions, std::vector<VertexKind>* kinds, LevelStats* stats);
   std::vector<ParamPoint> TakeParams() { return std::move(params_out_); }
@@ -75,16 +69,18 @@ class LevelRefiner {
   bool ChildrenValid(uint32_t f) const;
   void DemoteInvalidFaces();
   void ForwardMapDemoted();
-  bool Folds3d(uint32_t f) const;
-  size_t DemoteFoldedFaces();
   std::array<std::array<Vec3d, 3>, 4> Children(uint32_t f) const;
   ParamPoint Relocate(uint32_t f, uint32_t x) const;
   ParamPoint Project(uint32_t f, uint32_t x, const ParamPoint& located, const std::vector<Vec3>& fine_pos) const;
   bool RelocateBoundary(uint32_t f, uint32_t x, ParamPoint* out) const;
+  void ProjectGlobally(const std::vector<Vec3>& fine_pos, std::vector<ParamPoint>* next) const;
+  void UpdateParams(const std::vector<Vec3>& fine_pos, std::vector<ParamPoint>* next) const;
+  double RmsError(const std::vector<Vec3>& fine_pos, const std::vector<ParamPoint>& next) const;
 
   const SemiRegularHierarchy& h_;
   const int j_;
   const InputSurface& s_;
+  const RefineOptions options_;
   const LevelDomain dom_;
   const std::vector<Vec3>& pos_;
   const std::vector<ParamPoint>& params_;
@@ -354,7 +350,7 @@ ParamPoint LevelRefiner::Project(uint32_t f, uint32_t x, const ParamPoint& locat
       const Face& t = fine[child];
       std::array<double, 3> bb;
       const double d = (ClosestPointOnTriangle(p, fine_pos[t[0]], fine_pos[t[1]], fine_pos[t[2]], &bb) - p).squaredNorm();
-      if (d < best_d * kProjectionMargin) {
+      if (d < best_d) {
         best_d = d;
         best.face = child;
         best.bary = bb;
@@ -381,39 +377,6 @@ void LevelRefiner::ForwardMapDemoted() {
   });
 }
 
-// A child whose 3D normal opposes its parent's is a fold in the making: the
-// parameter test cannot see it where the charts are only approximately
-// consistent (unfolding around extraordinary vertices).
-bool LevelRefiner::Folds3d(uint32_t f) const {
-  const Face& t = dom_.faces()[f];
-  const Vec3 n = (pos_[t[1]] - pos_[t[0]]).cross(pos_[t[2]] - pos_[t[0]]);
-  const Vec3 m01 = choice_[dom_.EdgeOf(f, 0)].position;
-  const Vec3 m12 = choice_[dom_.EdgeOf(f, 1)].position;
-  const Vec3 m20 = choice_[dom_.EdgeOf(f, 2)].position;
-  const Vec3 kids[4][3] = {{pos_[t[0]], m01, m20}, {m01, pos_[t[1]], m12}, {m20, m12, pos_[t[2]]}, {m01, m12, m20}};
-  for (const auto& k : kids) {
-    if ((k[1] - k[0]).cross(k[2] - k[0]).dot(n) <= 0.0) return true;
-  }
-  return false;
-}
-
-size_t LevelRefiner::DemoteFoldedFaces() {
-  size_t demoted = 0;
-  for (uint32_t f = 0; f < dom_.faces().size(); ++f) {
-    if (!Folds3d(f)) continue;
-    for (int i = 0; i < 3; ++i) {
-      const uint32_t k = dom_.EdgeOf(f, i);
-      EdgeChoice& c = choice_[k];
-      if (c.kind != VertexKind::kNormal) continue;
-      c.u = Midpoint(dom_.Sides(k).left_slot);
-      c.kind = VertexKind::kNonNormal;
-      c.needs_forward = true;
-      ++demoted;
-    }
-  }
-  return demoted;
-}
-
 void LevelRefiner::Run(std::vector<Vec3>* positions, std::vector<VertexKind>* kinds, LevelStats* stats) {
   BuildBuckets();
   const StencilTable stencils = BuildButterflyStencils(h_, j_);
@@ -427,7 +390,6 @@ void LevelRefiner::Run(std::vector<Vec3>* positions, std::vector<VertexKind>* ki
   });
   DemoteInvalidFaces();
   ForwardMapDemoted();
-  for (int round = 0; round < kFoldRounds && DemoteFoldedFaces() > 0; ++round) ForwardMapDemoted();
   for (const EdgeChoice& c : choice_) {
     positions->push_back(c.position);
     kinds->push_back(c.kind);
@@ -436,17 +398,28 @@ void LevelRefiner::Run(std::vector<Vec3>* positions, std::vector<VertexKind>* ki
     if (c.kind == VertexKind::kBoundary) ++stats->boundary;
   }
   std::vector<ParamPoint> next(params_.size());
+  UpdateParams(*positions, &next);
+  stats->rms_error = RmsError(*positions, next);
+  params_out_ = std::move(next);
+}
+
+void LevelRefiner::UpdateParams(const std::vector<Vec3>& fine_pos, std::vector<ParamPoint>* next) const {
   const size_t nf = dom_.faces().size();
   ParallelFor(nf, [&](size_t begin, size_t end, size_t) {
     for (size_t f = begin; f < end; ++f) {
       for (uint32_t n = bucket_offsets_[f]; n < bucket_offsets_[f + 1]; ++n) {
         const uint32_t x = bucket_items_[n];
-        next[x] = Relocate(static_cast<uint32_t>(f), x);
-        if (kProjectParams && !s_.is_boundary[x]) next[x] = Project(static_cast<uint32_t>(f), x, next[x], *positions);
+        ParamPoint& out = (*next)[x];
+        out = Relocate(static_cast<uint32_t>(f), x);
+        if (options_.project_locally && !s_.is_boundary[x]) out = Project(static_cast<uint32_t>(f), x, out, fine_pos);
       }
     }
   });
-  // Remesh error seen from the input vertices (cheap stand-in for Metro).
+  if (options_.global_projection_ratio > 0.0) ProjectGlobally(fine_pos, next);
+}
+
+// Remesh error seen from the input vertices (cheap stand-in for Metro).
+double LevelRefiner::RmsError(const std::vector<Vec3>& fine_pos, const std::vector<ParamPoint>& next) const {
   const std::vector<Face>& fine = h_.Faces(j_ + 1);
   std::mutex lock;
   double sum = 0.0;
@@ -455,15 +428,49 @@ void LevelRefiner::Run(std::vector<Vec3>* positions, std::vector<VertexKind>* ki
     for (size_t x = begin; x < end; ++x) {
       const Face& t = fine[next[x].face];
       std::array<double, 3> b;
-      const Vec3 q = ClosestPointOnTriangle(s_.mesh->positions[x], (*positions)[t[0]], (*positions)[t[1]],
-                                            (*positions)[t[2]], &b);
+      const Vec3 q = ClosestPointOnTriangle(s_.mesh->positions[x], fine_pos[t[0]], fine_pos[t[1]], fine_pos[t[2]], &b);
       local += (q - s_.mesh->positions[x]).squaredNorm();
     }
     std::lock_guard<std::mutex> g(lock);
     sum += local;
   });
-  stats->rms_error = next.empty() ? 0.0 : std::sqrt(sum / static_cast<double>(next.size()));
-  params_out_ = std::move(next);
+  return next.empty() ? 0.0 : std::sqrt(sum / static_cast<double>(next.size()));
+}
+
+// Re-parameterizes an input vertex onto the closest level-(j+1) triangle
+// anywhere on the remesh, facing the same way as the input around it, when that
+// is clearly (options_.global_projection_ratio) closer than its current one.
+// The local projection only looks one face ring away; where the base
+// parameterization compressed a protrusion (ear tips, claws) its input
+// vertices stay assigned to triangles that cut the protrusion off, and only a
+// global search moves them onto the triangles that now cover it.
+void LevelRefiner::ProjectGlobally(const std::vector<Vec3>& fine_pos, std::vector<ParamPoint>* next) const {
+  Mesh level;
+  level.positions = fine_pos;
+  level.faces = h_.Faces(j_ + 1);
+  StatusOr<TriangleBvh> bvh = TriangleBvh::Build(level);
+  if (!bvh.ok()) return;  // non-finite positions: keep the local parameters
+  std::vector<Vec3> face_normal(level.faces.size());
+  for (size_t f = 0; f < face_normal.size(); ++f) {
+    const Face& t = level.faces[f];
+    face_normal[f] = (fine_pos[t[1]] - fine_pos[t[0]]).cross(fine_pos[t[2]] - fine_pos[t[0]]);
+  }
+  ParallelFor(next->size(), [&](size_t begin, size_t end, size_t) {
+    for (size_t x = begin; x < end; ++x) {
+      if (s_.is_boundary[x]) continue;
+      ParamPoint& cur = (*next)[x];
+      const Vec3& p = s_.mesh->positions[x];
+      const Face& t = level.faces[cur.face];
+      std::array<double, 3> b;
+      const double d_cur = (ClosestPointOnTriangle(p, fine_pos[t[0]], fine_pos[t[1]], fine_pos[t[2]], &b) - p).norm();
+      const Vec3& n = s_.normals[x];
+      const ClosestPointResult cp = bvh->ClosestPointFiltered(
+          p, [&](uint32_t f) { return face_normal[f].dot(n) > 0.0; }, d_cur);
+      if (!cp.found() || std::sqrt(cp.squared_distance) >= d_cur * options_.global_projection_ratio) continue;
+      cur.face = cp.face;
+      cur.bary = cp.barycentric;
+    }
+  });
 }
 
 }  // namespace
@@ -480,14 +487,19 @@ InputSurface::InputSurface(const Mesh& m, const TriangleBvh& b, std::vector<uint
   for (uint32_t f = 0; f < m.faces.size(); ++f) {
     for (uint32_t v : m.faces[f]) vertex_faces[fill[v]++] = f;
   }
+  normals.assign(m.positions.size(), Vec3::Zero());
+  for (const Face& f : m.faces) {
+    const Vec3 n = (m.positions[f[1]] - m.positions[f[0]]).cross(m.positions[f[2]] - m.positions[f[0]]);
+    for (uint32_t v : f) normals[v] += n;
+  }
 }
 
 void RefineLevel(const SemiRegularHierarchy& hierarchy, int j, const InputSurface& surface,
-                 std::vector<Vec3>* positions, std::vector<VertexKind>* kinds,
+                 const RefineOptions& options, std::vector<Vec3>* positions, std::vector<VertexKind>* kinds,
                  std::vector<ParamPoint>* params, LevelStats* stats) {
   *stats = LevelStats();
   std::vector<Vec3> level = *positions;
-  LevelRefiner refiner(hierarchy, j, surface, &level, params);
+  LevelRefiner refiner(hierarchy, j, surface, options, &level, params);
   refiner.Run(positions, kinds, stats);
   *params = refiner.TakeParams();
 }

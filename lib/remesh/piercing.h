@@ -14,7 +14,10 @@
 //    minimum quality in the chart; otherwise the edge is demoted to its midpoint.
 //  * Hits are searched only within |t| <= kReach * edge length.
 //  * The parameterization is updated by the affine 1-to-4 split of each face at
-//    its three new points (no Floater smoothing between levels).
+//    its three new points; instead of Guskov's Floater smoothing between levels,
+//    RefineOptions can then re-project each input vertex onto the closest new
+//    triangle (locally, and globally with a normal test), so the parameter
+//    follows the 3D remesh and the distortion of the base map stops compounding.
 //  * Boundary edges are never pierced: the new vertex is the parametric midpoint
 //    on the input's boundary polyline (VertexKind::kBoundary).
 #pragma once
@@ -35,8 +38,19 @@ struct InputSurface {
   std::vector<uint8_t> is_boundary;     // per input vertex
   std::vector<uint32_t> face_offsets;   // vertex -> incident faces (CSR)
   std::vector<uint32_t> vertex_faces;
+  std::vector<Vec3> normals;            // area-weighted vertex normals (not unit)
 
   InputSurface(const Mesh& m, const TriangleBvh& b, std::vector<uint8_t> boundary);
+};
+
+// How the parameterization follows each level (see the departures above).
+struct RefineOptions {
+  // Project each input vertex onto the closest child triangle of its face and
+  // the face's neighbours.
+  bool project_locally = false;
+  // > 0: then move it to the closest same-facing triangle of the whole level
+  // when that is closer than this ratio times its current distance.
+  double global_projection_ratio = 0.0;
 };
 
 struct LevelStats {
@@ -50,7 +64,7 @@ struct LevelStats {
 // on entry and level-(j+1) positions on return; `kinds` gets the odd vertices'
 // kinds appended; `params` (one per input vertex) moves from level j to j+1.
 void RefineLevel(const SemiRegularHierarchy& hierarchy, int j, const InputSurface& surface,
-                 std::vector<Vec3>* positions, std::vector<VertexKind>* kinds,
+                 const RefineOptions& options, std::vector<Vec3>* positions, std::vector<VertexKind>* kinds,
                  std::vector<ParamPoint>* params, LevelStats* stats);
 
 }  // namespace eqmesh
