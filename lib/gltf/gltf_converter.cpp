@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "coding/decoder.h"
+#include "coding/level_count_search.h"
 #include "gltf/accessor_io.h"
 #include "gltf/gltf_io.h"
 #include "gltf/stream_decoder.h"
@@ -35,7 +36,7 @@ StatusOr<CompressedGeometry> CompressWithEqmesh(const ConvertOptions& options, c
   codec.original = &mesh;
   EncodeReport encode_report;
   CompressedGeometry out;
-  EQMESH_ASSIGN_OR_RETURN(out.stream, Encode(remeshed, codec, &encode_report));
+  EQMESH_ASSIGN_OR_RETURN(out.stream, EncodeChoosingLevels(remeshed, codec, &encode_report));
   EQMESH_ASSIGN_OR_RETURN(out.chunk_lengths, EqmeshStreamLayout()(out.stream.data(), out.stream.size()));
   // Placeholder counts and bounds come from the decoded data (spec rule 6).
   EQMESH_ASSIGN_OR_RETURN(out.decoded, Decode(out.stream.data(), out.stream.size()));

@@ -1,0 +1,111 @@
+// Level-count search over truncated streams (see level_count_search.h).
+#include "coding/level_count_search.h"
+
+#include <string>
+#include <utility>
+
+namespace eqmesh {
+namespace {
+
+struct Candidate {
+  std::vector<uint8_t> bytes;
+  EncodeReport report;
+};
+
+StatusOr<Candidate> EncodeTruncated(const SemiRegularMesh& mesh, int levels, const EncodeOptions& options) {
+  EQMESH_ASSIGN_OR_RETURN(SemiRegularMesh truncated, TruncateLevels(mesh, levels));
+  EncodeOptions o = options;
+  o.measure_psnr = true;
+  Candidate c;
+  EQMESH_ASSIGN_OR_RETURN(c.bytes, Encode(truncated, o, &c.report));
+  return c;
+}
+
+// Better for a bpv target: higher PSNR; a stream that also stays smaller wins ties.
+bool BetterAtRate(const Candidate& a, const Candidate& b) {
+  if (a.report.psnr_db != b.report.psnr_db) return a.report.psnr_db > b.report.psnr_db;
+  return a.bytes.size() < b.bytes.size();
+}
+
+// Scans K = 1, 2, ... and stops at the first level count that does worse than the
+// previous one (`worse(next, previous)`); returns the best of those tried.
+template <typename Better, typename Worse>
+StatusOr<Candidate> ScanLevels(const SemiRegularMesh& mesh, const EncodeOptions& options, Better better,
+                               Worse worse, LevelCountReport* out) {
+  const int top = mesh.hierarchy.levels();
+  Candidate best, previous;
+  bool have_best = false, have_previous = false;
+  for (int k = top > 0 ? 1 : 0; k <= top; ++k) {
+    ReportProgress(options.progress, "levels " + std::to_string(k) + "/" + std::to_string(top),
+                   static_cast<double>(k) / static_cast<double>(top + 1));
+    EQMESH_ASSIGN_OR_RETURN(Candidate c, EncodeTruncated(mesh, k, options));
+    const bool feasible = options.target_psnr <= 0 || c.report.psnr_db >= options.target_psnr;
+    out->trials.push_back({k, c.report.bpv, c.report.psnr_db, c.bytes.size(), feasible});
+    const bool stop = have_previous && worse(c, previous);
+    if (feasible && (!have_best || better(c, best))) {
+      best = c;
+      have_best = true;
+      out->chosen_levels = k;
+    }
+    if (stop && have_best) break;
+    previous = std::move(c);
+    have_previous = true;
+  }
+  if (!have_best) {
+    // No level count meets the PSNR target: the last (finest) one is the closest.
+    out->chosen_levels = top;
+    return std::move(previous);
+  }
+  return best;
+}
+
+}  // namespace
+
+StatusOr<SemiRegularMesh> TruncateLevels(const SemiRegularMesh& mesh, int levels) {
+  const SemiRegularHierarchy& h = mesh.hierarchy;
+  if (levels < 0 || levels > h.levels()) {
+    return InvalidArgument("cannot truncate a " + std::to_string(h.levels()) + "-level mesh to " +
+                           std::to_string(levels) + " levels");
+  }
+  SemiRegularMesh out;
+  EQMESH_ASSIGN_OR_RETURN(out.hierarchy, SemiRegularHierarchy::Build(h.NumVertices(0), h.BaseFaces(), levels));
+  const size_t n = h.NumVertices(levels);
+  if (mesh.positions.size() < n) return InvalidArgument("semi-regular mesh has too few positions");
+  out.positions.assign(mesh.positions.begin(), mesh.positions.begin() + static_cast<std::ptrdiff_t>(n));
+  if (mesh.kinds.size() >= n) {
+    out.kinds.assign(mesh.kinds.begin(), mesh.kinds.begin() + static_cast<std::ptrdiff_t>(n));
+  }
+  out.kept_exactly = mesh.kept_exactly;
+  return out;
+}
+
+StatusOr<std::vector<uint8_t>> EncodeChoosingLevels(const SemiRegularMesh& mesh, const EncodeOptions& options,
+                                                    EncodeReport* report, LevelCountReport* levels) {
+  LevelCountReport local;
+  LevelCountReport& out = levels ? *levels : local;
+  out = LevelCountReport();
+  const bool targeted = options.target_bpv > 0 || options.target_psnr > 0;
+  if (!targeted || options.original == nullptr) {
+    out.chosen_levels = mesh.hierarchy.levels();
+    return Encode(mesh, options, report);
+  }
+  Candidate chosen;
+  if (options.target_psnr > 0) {
+    // Smallest stream meeting the target; a level count that needs more bytes
+    // than the previous one (both meeting it) ends the scan.
+    auto better = [](const Candidate& a, const Candidate& b) { return a.bytes.size() < b.bytes.size(); };
+    auto worse = [&](const Candidate& next, const Candidate& prev) {
+      return prev.report.psnr_db >= options.target_psnr && next.bytes.size() > prev.bytes.size();
+    };
+    EQMESH_ASSIGN_OR_RETURN(chosen, ScanLevels(mesh, options, better, worse, &out));
+  } else {
+    auto worse = [](const Candidate& next, const Candidate& prev) {
+      return next.report.psnr_db < prev.report.psnr_db;
+    };
+    EQMESH_ASSIGN_OR_RETURN(chosen, ScanLevels(mesh, options, BetterAtRate, worse, &out));
+  }
+  if (report) *report = chosen.report;
+  return std::move(chosen.bytes);
+}
+
+}  // namespace eqmesh
