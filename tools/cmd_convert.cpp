@@ -9,17 +9,23 @@
 #include <nlohmann/json.hpp>
 
 #include "mesh/mesh_io.h"
+#include "mesh/semi_regular_io.h"
 #include "tools/command.h"
 
 namespace eqmesh::cli {
 namespace {
+
+StatusOr<Mesh> ReadFinestLevel(const std::string& path) {
+  EQMESH_ASSIGN_OR_RETURN(SemiRegularMesh m, ReadSemiRegular(path));
+  return ExtractLevel(m, m.hierarchy.levels());
+}
 
 int RunConvert(int argc, char** argv) {
   CLI::App app{"Read IN (any supported format) and write OUT (.obj .ply .off .glb) with\n"
                "positions and triangles only."};
   std::string in, out;
   bool json = false, ply_double = false;
-  app.add_option("IN", in, "input mesh")->required();
+  app.add_option("IN", in, "input mesh, or a .srm semi-regular file (its finest level)")->required();
   app.add_option("OUT", out, "output mesh: .obj .ply .off .glb")->required();
   app.add_flag("--ply-double", ply_double, "store PLY positions as double instead of float32");
   app.add_flag("--json", json, "print one JSON object describing what was written");
@@ -29,7 +35,8 @@ int RunConvert(int argc, char** argv) {
     return app.exit(e);
   }
   ReadReport report;
-  StatusOr<Mesh> mesh = ReadMesh(in, &report);
+  const bool srm = in.size() >= 4 && in.compare(in.size() - 4, 4, ".srm") == 0;
+  StatusOr<Mesh> mesh = srm ? ReadFinestLevel(in) : ReadMesh(in, &report);
   if (!mesh.ok()) return Fail("convert", mesh.status().message());
   WriteOptions options;
   options.ply_double_positions = ply_double;

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "mesh/mesh_io.h"
+#include "mesh/semi_regular_io.h"
 #include "mesh/semi_regular.h"
 #include "remesh/remesh.h"
 #include "mesh/diagnose.h"
@@ -39,7 +40,10 @@ int RunRemesh(int argc, char** argv) {
   int levels = -1, base_vertices = -1;
   bool repair = false, json = false;
   app.add_option("IN", in_path, "input mesh (.obj .ply .off .gltf .glb, optionally .gz)")->required();
-  app.add_option("OUT", out_path, "output mesh, finest level (.obj .ply .off .glb)")->required();
+  app.add_option("OUT", out_path,
+                 "output: finest level as a mesh (.obj .ply .off .glb), or the whole hierarchy as a "
+                 "lossless .srm file that `eqmesh encode` reads without remeshing again")
+      ->required();
   app.add_option("--levels", levels, "subdivision levels (-1: automatic, by measured error)")
       ->check(CLI::Range(-1, 10));
   app.add_option("--base-vertices", base_vertices, "base mesh size to aim for (-1: 0.3% of the input)")
@@ -66,7 +70,9 @@ int RunRemesh(int argc, char** argv) {
   if (options.progress) std::fprintf(stderr, "\r\033[K");
   if (!remeshed.ok()) return eqmesh::cli::Fail(kName, in_path + ": " + remeshed.status().message());
   const eqmesh::Mesh finest = eqmesh::ExtractLevel(*remeshed, remeshed->hierarchy.levels());
-  const eqmesh::Status written = eqmesh::WriteMesh(finest, out_path);
+  const bool srm = out_path.size() >= 4 && out_path.compare(out_path.size() - 4, 4, ".srm") == 0;
+  const eqmesh::Status written =
+      srm ? eqmesh::WriteSemiRegular(*remeshed, out_path) : eqmesh::WriteMesh(finest, out_path);
   if (!written.ok()) return eqmesh::cli::Fail(kName, written.message());
   if (!json) {
     std::printf("%s: %zu input vertices -> base %zu, %d levels, %zu vertices, normal %.2f%%, %.2f s\n",
