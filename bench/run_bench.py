@@ -283,6 +283,7 @@ class Bench:
         caps = {
             "zerotree": "zerotree" in enc,
             "srm": ".srm" in enc and ".srm" in rem,
+            "original": "--original" in enc,
             "glb": bool(re.search(r"OUT[^\n]*\.glb", enc)),
             "convert": "usage" in help_of("convert").lower(),
         }
@@ -373,9 +374,14 @@ class Bench:
         if self.args.quick:
             variants, rates = [("eq", "unlifted")], [1.0, 4.0]
         src = m.get("srm") or canon
+        # A .srm carries no original: the encoder needs it to choose the level count.
+        extra = ["--original", canon] if (m.get("srm") and self.caps["original"]) else []
         enc_runs = self.args.runs if (m.get("srm") or self.args.encode_runs_full) else 1
+        if self.args.encode_runs:
+            enc_runs = self.args.encode_runs
         if self.args.quick:
             enc_runs = 1
+        glb_rates = self.args.glb_rates if self.args.glb_rates is not None else [1.0]
         for coder, transform in variants:
             vname = "%s-%s" % (coder, transform)
             for bpv in rates:
@@ -388,7 +394,7 @@ class Bench:
                     for _ in range(enc_runs):
                         out, _, wall, peak = run_timed(
                             [self.eq, "encode", src, stream, "--bpv", bpv, "--transform", transform,
-                             "--coder", coder, "--json"])
+                             "--coder", coder, "--json"] + extra)
                         j = json_of(out)
                         enc_s.append(j.get("encode_seconds", wall))
                         rem_s.append(j.get("remesh_seconds"))
@@ -402,9 +408,9 @@ class Bench:
                         dpeaks.append(peak)
                     psnr, rms, haus, ftri = self.compare(canon, dec, m["samples"])
                     glb_bytes = None
-                    if self.caps["glb"]:
+                    if self.caps["glb"] and (self.args.quick or bpv in glb_rates):
                         glb = stream[:-4] + ".glb"
-                        run_timed([self.eq, "encode", src, glb, "--bpv", bpv, "--transform",
+                        run_timed([self.eq, "encode", canon, glb, "--bpv", bpv, "--transform",
                                    transform, "--coder", coder])
                         glb_bytes = os.path.getsize(glb)
                     with open(stream, "rb") as f:
@@ -426,9 +432,32 @@ class Bench:
                     self.add(**row)
                     log("%s:   %d B, %.3f bpv, %.2f dB, enc %.2fs dec %.3fs" % (
                         m["name"], nbytes, row["bpv"], psnr or float("nan"), row["encode_s"] or 0, d or 0))
+                    if coder == "eq" and bpv == max(rates) and not self.args.quick:
+                        self.levels(m, base, canon, stream, vname, bpv, j)
                 except (StepError, KeyError, ValueError) as e:
                     row["error"] = str(e)
                     self.add(**row)
+
+    def levels(self, m, base, canon, stream, vname, bpv, enc_json):
+        """Progressive access: decode every level of one stream and measure it."""
+        coded = enc_json.get("levels") or 0
+        for k in range(0, int(coded) + 1):
+            dec = stream[:-4] + "_L%d.ply" % k
+            row = dict(base, codec="eqmesh-level", variant=vname, param="%g:L%d" % (bpv, k))
+            try:
+                out, _, wall, _ = run_timed([self.eq, "decode", stream, dec, "--level", k, "--json"])
+                dj = json_of(out)
+                psnr, rms, haus, ftri = self.compare(canon, dec, m["samples"])
+                row.update(psnr_db=psnr, rms=rms, hausdorff=haus, decode_s=dj.get("decode_seconds", wall),
+                           output_vertices=dj.get("vertices"), output_triangles=dj.get("faces", ftri),
+                           bytes_payload=(dj.get("level_offsets", []) + [dj.get("bytes")])[k]
+                           if k < len(dj.get("level_offsets", [])) else dj.get("bytes"), runs=1)
+                self.add(**row)
+                log("%s:   level %d: %s vertices, %.2f dB" % (m["name"], k, dj.get("vertices"),
+                                                           psnr or float("nan")))
+            except (StepError, KeyError, ValueError, TypeError) as e:
+                row["error"] = str(e)
+                self.add(**row)
 
     def draco(self, m, wd, canon, base):
         levels, qps = DRACO_LEVELS, self.args.qps or QPS
@@ -1014,6 +1043,10 @@ def main():
     ap.add_argument("--encode-runs-full", action="store_true",
                     help="repeat eqmesh encode --runs times even when it must remesh every time "
                          "(default: once unless .srm input is supported)")
+    ap.add_argument("--encode-runs", type=int,
+                    help="timed eqmesh encode runs per point (default: --runs when encode reads .srm)")
+    ap.add_argument("--glb-rates", type=float, nargs="*",
+                    help="bpv values at which the whole-GLB size is also measured (default 1)")
     ap.add_argument("--rates", type=float, nargs="+",
                     help="eqmesh target bpv (default 0.25 0.5 1 2 3 4)")
     ap.add_argument("--qps", type=int, nargs="+",
