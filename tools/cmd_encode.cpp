@@ -1,16 +1,20 @@
-// eqmesh encode IN OUT.eqm: read -> normal remesh -> closed-loop wavelet + EQ
-// encode, at a lambda, a bits-per-vertex target or a PSNR target.
+// eqmesh encode IN OUT.eqm: read -> normal remesh -> wavelet + EQ (closed loop),
+// zerotree (embedded, open loop) or uniform coding, at a lambda, a bits-per-vertex
+// target or a PSNR target.
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <optional>
 #include <string>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include "coding/encoder.h"
+#include "coding/level_count_search.h"
 #include "gltf/gltf_converter.h"
 #include "mesh/mesh_io.h"
+#include "mesh/semi_regular_io.h"
 #include "remesh/remesh.h"
 #include "tools/command.h"
 
@@ -21,10 +25,20 @@ constexpr const char* kName = "encode";
 
 struct EncodeArgs {
   std::string in_path, out_path;
-  double bpv = 0, lambda = 0, psnr = 0, tangential_factor = 100.0;
+  double bpv = 0, lambda = 0, psnr = 0, tangential_factor = 1.0;
   std::string transform = "unlifted", coder = "eq";
+  std::string original_path;
   int levels = -1, base_vertices = -1;
   bool repair = false, measure = false, json = false, fallback = false;
+};
+
+// What the encoder starts from: a semi-regular mesh (remeshed here, or read
+// from a .srm file) and, when known, the original mesh it approximates.
+struct Source {
+  SemiRegularMesh remeshed;
+  std::optional<Mesh> original;
+  RemeshReport remesh;
+  double remesh_seconds = 0;
 };
 
 double SecondsSince(std::chrono::steady_clock::time_point start) {
@@ -46,7 +60,9 @@ EncodeOptions ToEncodeOptions(const EncodeArgs& a) {
   EncodeOptions o;
   o.transform = a.transform == "lifted" ? bitstream::TransformId::kLifted
                                         : bitstream::TransformId::kUnlifted;
-  o.coder = a.coder == "uniform" ? bitstream::CoderId::kUniform : bitstream::CoderId::kEq;
+  o.coder = a.coder == "uniform"    ? bitstream::CoderId::kUniform
+            : a.coder == "zerotree" ? bitstream::CoderId::kZerotree
+                                    : bitstream::CoderId::kEq;
   if (a.lambda > 0) o.lambda = a.lambda;
   o.target_bpv = a.bpv;
   o.target_psnr = a.psnr;
@@ -56,14 +72,19 @@ EncodeOptions ToEncodeOptions(const EncodeArgs& a) {
 }
 
 nlohmann::json ToJson(const EncodeArgs& a, const RemeshReport& remesh, const EncodeReport& r,
-                      double remesh_seconds, double encode_seconds) {
+                      const LevelCountReport& search, double remesh_seconds, double encode_seconds) {
   nlohmann::json j;
   j["input"] = a.in_path;
   j["output"] = a.out_path;
   j["input_vertices"] = remesh.input_vertices;
   j["base_vertices"] = remesh.base_vertices;
   j["semi_regular_vertices"] = remesh.output_vertices;
-  j["levels"] = remesh.levels;
+  j["remesh_levels"] = remesh.levels;
+  j["levels"] = r.level_bytes.size();
+  j["level_search"] = nlohmann::json::array();
+  for (const LevelCountTrial& t : search.trials) {
+    j["level_search"].push_back({{"levels", t.levels}, {"bpv", t.bpv}, {"psnr_db", t.psnr_db}});
+  }
   j["transform"] = a.transform;
   j["coder"] = a.coder;
   j["bytes"] = r.total_bytes;
@@ -133,10 +154,48 @@ int EncodeToGlb(const EncodeArgs& a) {
   return 0;
 }
 
+StatusOr<Source> RemeshInput(const EncodeArgs& a) {
+  Source src;
+  EQMESH_ASSIGN_OR_RETURN(Mesh mesh, ReadMesh(a.in_path));
+  RemeshOptions options;
+  options.levels = a.levels;
+  options.base_vertices = a.base_vertices;
+  options.repair = a.repair;
+  const auto start = std::chrono::steady_clock::now();
+  auto remeshed = Remesh(mesh, options, &src.remesh);
+  if (!remeshed.ok()) return remeshed.status().WithContext(a.in_path);
+  src.remesh_seconds = SecondsSince(start);
+  src.remeshed = std::move(*remeshed);
+  src.original = std::move(mesh);
+  return src;
+}
+
+// A .srm from `eqmesh remesh` skips remeshing; --original names the mesh it
+// came from (needed for bpv, PSNR targets, --measure and the level search).
+StatusOr<Source> ReadSemiRegularInput(const EncodeArgs& a) {
+  Source src;
+  EQMESH_ASSIGN_OR_RETURN(src.remeshed, ReadSemiRegular(a.in_path));
+  if (!a.original_path.empty()) {
+    EQMESH_ASSIGN_OR_RETURN(Mesh original, ReadMesh(a.original_path));
+    src.original = std::move(original);
+    src.remesh.input_vertices = CountReferencedVertices(*src.original);
+  } else if (a.bpv > 0 || a.psnr > 0 || a.measure) {
+    return InvalidArgument(a.in_path + ": --bpv, --psnr and --measure on a .srm input need --original MESH");
+  }
+  const SemiRegularHierarchy& h = src.remeshed.hierarchy;
+  src.remesh.base_vertices = h.NumVertices(0);
+  src.remesh.levels = h.levels();
+  src.remesh.output_vertices = src.remeshed.positions.size() + src.remeshed.kept_exactly.positions.size();
+  return src;
+}
+
 int RunEncode(int argc, char** argv) {
   CLI::App app{"Encode a mesh into an eqmesh stream (.eqm)", argv[0]};
   EncodeArgs a;
-  app.add_option("IN", a.in_path, "input mesh (.obj .ply .off .gltf .glb, optionally .gz)")->required();
+  app.add_option("IN", a.in_path,
+                 "input mesh (.obj .ply .off .gltf .glb, optionally .gz), or a .srm semi-regular file "
+                 "written by `eqmesh remesh` (no remeshing)")
+      ->required();
   app.add_option("OUT", a.out_path, "output: .eqm stream, or .glb with EXT_normal_mesh_compression")->required();
   auto* bpv = app.add_option("--bpv", a.bpv, "target bits per input vertex (within 3 %)")
                   ->check(CLI::Range(1e-3, 1e4));
@@ -148,16 +207,20 @@ int RunEncode(int argc, char** argv) {
   lambda->excludes(psnr);
   app.add_option("--transform", a.transform, "butterfly wavelet: unlifted | lifted")
       ->check(CLI::IsMember({"unlifted", "lifted"}));
-  app.add_option("--coder", a.coder, "level coder: eq | uniform (baseline)")
-      ->check(CLI::IsMember({"eq", "uniform"}));
+  app.add_option("--coder", a.coder,
+                 "coefficient coder: eq | zerotree (embedded, PGC baseline; --bpv cuts it exactly, "
+                 "--lambda picks its last bit plane) | uniform (baseline)")
+      ->check(CLI::IsMember({"eq", "zerotree", "uniform"}));
   app.add_option("--tangential-factor", a.tangential_factor,
-                 "tangential components use lambda / F (default 100)")
+                 "tangential components use lambda / F (default 1; the seed paper uses 100)")
       ->check(CLI::Range(1e-6, 1e6));
   app.add_option("--levels", a.levels, "subdivision levels (-1: automatic)")->check(CLI::Range(-1, 10));
   app.add_option("--base-vertices", a.base_vertices, "base mesh size to aim for (-1: automatic)")
       ->check(CLI::Range(-1, 1 << 30));
   app.add_flag("--repair", a.repair, "repair non-manifold / misoriented input instead of refusing it");
   app.add_flag("--measure", a.measure, "decode the stream and report its PSNR against the input");
+  app.add_option("--original", a.original_path,
+                 ".srm input: the mesh it was remeshed from (PSNR reference and bpv denominator)");
   app.add_flag("--fallback", a.fallback,
                ".glb output: also store uncompressed geometry for loaders without the extension");
   app.add_flag("--json", a.json, "print one JSON object with the report");
@@ -168,41 +231,42 @@ int RunEncode(int argc, char** argv) {
   }
   if (a.base_vertices == 0) return Fail(kName, "--base-vertices must be positive or -1");
   if (EndsWith(a.out_path, ".gltf")) return Fail(kName, a.out_path + ": write .glb (binary glTF) or .eqm");
+  if (EndsWith(a.out_path, ".glb") && a.coder == "zerotree") {
+    // Its one embedded payload leaves levelByteRanges 2..J empty, which glTF validity
+    // rule 10 forbids (ext_spec A.4, coder 1).
+    return Fail(kName, a.out_path + ": --coder zerotree writes .eqm only (glTF needs one chunk per level)");
+  }
   if (EndsWith(a.out_path, ".glb")) return EncodeToGlb(a);
 
-  auto mesh = ReadMesh(a.in_path);
-  if (!mesh.ok()) return Fail(kName, mesh.status().message());
-  RemeshOptions remesh_options;
-  remesh_options.levels = a.levels;
-  remesh_options.base_vertices = a.base_vertices;
-  remesh_options.repair = a.repair;
-  RemeshReport remesh_report;
-  const auto remesh_start = std::chrono::steady_clock::now();
-  auto remeshed = Remesh(*mesh, remesh_options, &remesh_report);
-  if (!remeshed.ok()) return Fail(kName, a.in_path + ": " + remeshed.status().message());
-  const double remesh_seconds = SecondsSince(remesh_start);
-
+  const bool srm_input = EndsWith(a.in_path, ".srm");
+  auto source = srm_input ? ReadSemiRegularInput(a) : RemeshInput(a);
+  if (!source.ok()) return Fail(kName, source.status().message());
   EncodeOptions options = ToEncodeOptions(a);
-  options.input_vertices = CountReferencedVertices(*mesh);
-  options.original = &*mesh;
+  if (source->original) {
+    options.input_vertices = CountReferencedVertices(*source->original);
+    options.original = &*source->original;
+  }
   EncodeReport report;
+  LevelCountReport search;
   const auto encode_start = std::chrono::steady_clock::now();
-  auto bytes = Encode(*remeshed, options, &report);
+  auto bytes = EncodeChoosingLevels(source->remeshed, options, &report, &search);
   if (!bytes.ok()) return Fail(kName, a.in_path + ": " + bytes.status().message());
   const double encode_seconds = SecondsSince(encode_start);
   const Status written = WriteBytesToFile(a.out_path, *bytes);
   if (!written.ok()) return Fail(kName, written.message());
+  const RemeshReport& remesh_report = source->remesh;
+  const double remesh_seconds = source->remesh_seconds;
 
   if (a.psnr > 0 && report.psnr_db < a.psnr) {
     std::fprintf(stderr, "eqmesh encode: warning: best PSNR %.2f dB is below the %.2f dB target\n",
                  report.psnr_db, a.psnr);
   }
   if (a.json) {
-    std::printf("%s\n", ToJson(a, remesh_report, report, remesh_seconds, encode_seconds).dump(2).c_str());
+    std::printf("%s\n", ToJson(a, remesh_report, report, search, remesh_seconds, encode_seconds).dump(2).c_str());
   } else {
     std::printf("%s: %zu bytes, %.3f bits per input vertex (%zu vertices), %d levels",
                 a.out_path.c_str(), report.total_bytes, report.bpv, options.input_vertices,
-                remesh_report.levels);
+                static_cast<int>(report.level_bytes.size()));
     if (report.psnr_measured) std::printf(", PSNR %.2f dB", report.psnr_db);
     std::printf("\n");
   }

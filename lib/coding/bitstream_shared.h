@@ -2,7 +2,7 @@
 // pattern). The values are part of the format: NEVER renumber or reuse one; add new
 // values at the end and bump kVersionMinor (compatible addition) or kVersionMajor.
 //
-// Stream layout, version 1.0 (all multi-byte integers little endian; "varint" is
+// Stream layout, version 1.1 (all multi-byte integers little endian; "varint" is
 // unsigned LEB128, "svarint" zig-zag LEB128; ext_spec/ restates this normatively):
 //
 //   magic            4 bytes  "EQMS"
@@ -26,10 +26,13 @@
 //                    Its vertex order defines base vertex numbering.
 //   kept chunk       Draco mesh buffer of SemiRegularMesh::kept_exactly.
 //   level chunks     opaque to the container; for kCoderEq one EqLevel chunk each
-//                    (lib/coding/eq), decoded against the hierarchy level layout.
+//                    (lib/coding/eq), decoded against the hierarchy level layout;
+//                    for kZerotree (since 1.1) chunk 0 is ONE embedded payload of
+//                    all levels (zerotree_levels.h) and chunks 1..J-1 are empty.
 //
 // A reader that stops after level chunk k has a complete level-(k+1) mesh: the level
-// table lets it know every chunk's byte range from the header alone.
+// table lets it know every chunk's byte range from the header alone. (Zerotree:
+// any prefix of the payload gives every level at a coarser quality.)
 #pragma once
 
 #include <cstdint>
@@ -38,7 +41,7 @@ namespace eqmesh::bitstream {
 
 constexpr uint8_t kMagic[4] = {'E', 'Q', 'M', 'S'};
 constexpr uint8_t kVersionMajor = 1;
-constexpr uint8_t kVersionMinor = 0;
+constexpr uint8_t kVersionMinor = 1;  // 1.1: coder 1 (zerotree) defined
 
 // Wavelet transform the level chunks are expressed in. Pinned values.
 enum class TransformId : uint8_t {
@@ -49,7 +52,7 @@ enum class TransformId : uint8_t {
 // Coefficient coder of the level chunks. Pinned values.
 enum class CoderId : uint8_t {
   kEq = 0,        // Estimation-Quantization coder (Lavu, Choi, Baraniuk 2003)
-  kZerotree = 1,  // reserved: zerotree coder (Khodakovsky, Guskov)
+  kZerotree = 1,  // zerotree coder (Khodakovsky, Guskov; PGC), since 1.1
   kUniform = 2,   // baseline: uniform scalar quantizer + adaptive Exp-Golomb (level_codec.h)
 };
 constexpr uint8_t kMaxCoderId = 2;

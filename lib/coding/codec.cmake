@@ -4,15 +4,15 @@
 set(EQMESH_CODEC_DIR "${CMAKE_CURRENT_LIST_DIR}")
 
 add_library(eqmesh_decoder STATIC
-  ${EQMESH_CODEC_DIR}/byte_io.cpp
   ${EQMESH_CODEC_DIR}/base_mesh_decoder.cpp
   ${EQMESH_CODEC_DIR}/stream_header.cpp
   ${EQMESH_CODEC_DIR}/level_codec.cpp
   ${EQMESH_CODEC_DIR}/level_synthesis.cpp
+  ${EQMESH_CODEC_DIR}/zerotree_levels.cpp
   ${EQMESH_CODEC_DIR}/decoder.cpp)
 target_include_directories(eqmesh_decoder PUBLIC "${PROJECT_SOURCE_DIR}/lib")
 # draco's imported targets lack Eigen's include path, so Eigen comes first via mesh.
-target_link_libraries(eqmesh_decoder PUBLIC eqmesh_eq_decoder eqmesh_entropy eqmesh_wavelet
+target_link_libraries(eqmesh_decoder PUBLIC eqmesh_eq_decoder eqmesh_zerotree eqmesh_entropy eqmesh_wavelet
                       eqmesh_mesh Eigen3::Eigen PRIVATE draco::draco)
 
 add_library(eqmesh_encoder STATIC
@@ -21,7 +21,9 @@ add_library(eqmesh_encoder STATIC
   ${EQMESH_CODEC_DIR}/base_influence.cpp
   ${EQMESH_CODEC_DIR}/level_encoder.cpp
   ${EQMESH_CODEC_DIR}/closed_loop.cpp
+  ${EQMESH_CODEC_DIR}/zerotree_encoder.cpp
   ${EQMESH_CODEC_DIR}/encoder.cpp
+  ${EQMESH_CODEC_DIR}/level_count_search.cpp
   ${EQMESH_CODEC_DIR}/rate_control.cpp)
 target_link_libraries(eqmesh_encoder PUBLIC eqmesh_decoder eqmesh_eq_encoder PRIVATE draco::draco)
 # lib/remesh is added after lib/coding, so test for its directory, not its target.

@@ -7,6 +7,7 @@
 #include "coding/level_codec.h"
 #include "coding/level_synthesis.h"
 #include "coding/stream_header.h"
+#include "coding/zerotree_levels.h"
 
 namespace eqmesh {
 namespace {
@@ -39,9 +40,10 @@ StreamInfo MakeStreamInfo(const StreamHeader& h, size_t header_size) {
   return s;
 }
 
-int LevelsToDecode(const StreamInfo& s, size_t size, const DecodeOptions& options) {
+int LevelsToDecode(const StreamInfo& s, const uint8_t* data, size_t size, const DecodeOptions& options) {
   int levels = s.levels;
   if (options.max_level >= 0) levels = std::min(levels, options.max_level);
+  if (s.coder == bitstream::CoderId::kZerotree) return ZerotreeLevelsAvailable(s, data, size, levels);
   while (levels > 0 && s.prefix_size[levels] > size) --levels;
   return levels;
 }
@@ -74,15 +76,6 @@ StatusOr<Mesh> DecodeKept(const uint8_t* data, const StreamInfo& s) {
   return DecodeDracoMesh(data + s.kept_offset, s.kept_size, limits, "eqm kept-exactly chunk");
 }
 
-Status CheckFinite(const std::vector<Vec3>& values, int level) {
-  for (const Vec3& v : values) {
-    if (!v.allFinite()) {
-      return CorruptStream("eqm level " + std::to_string(level) + " decodes to non-finite positions");
-    }
-  }
-  return Status::Ok();
-}
-
 // Runs the refinements 0 .. levels-1 on top of the decoded base.
 Status DecodeLevels(const uint8_t* data, const StreamInfo& s, const StreamHeader& h, int levels,
                     SemiRegularMesh* mesh) {
@@ -95,7 +88,7 @@ Status DecodeLevels(const uint8_t* data, const StreamInfo& s, const StreamHeader
                                                     data + s.level_offsets[j], s.level_sizes[j]));
     std::vector<Vec3> fine;
     EQMESH_RETURN_IF_ERROR(step.Synthesize(mesh->positions, frames, local, &fine));
-    EQMESH_RETURN_IF_ERROR(CheckFinite(fine, j + 1));
+    EQMESH_RETURN_IF_ERROR(CheckFiniteLevel(fine, j + 1));
     mesh->positions = std::move(fine);
   }
   return Status::Ok();
@@ -115,7 +108,7 @@ StatusOr<SemiRegularMesh> DecodeSemiRegular(const uint8_t* data, size_t size,
   EQMESH_ASSIGN_OR_RETURN(StreamHeader h, ReadStreamHeader(data, size, &header_size));
   const StreamInfo s = MakeStreamInfo(h, header_size);
   EQMESH_RETURN_IF_ERROR(CheckLength(s, size, options));
-  const int levels = LevelsToDecode(s, size, options);
+  const int levels = LevelsToDecode(s, data, size, options);
 
   EQMESH_ASSIGN_OR_RETURN(Mesh base, DecodeBase(data, s));
   SemiRegularMesh mesh;
@@ -126,7 +119,11 @@ StatusOr<SemiRegularMesh> DecodeSemiRegular(const uint8_t* data, size_t size,
   if (!hierarchy.ok()) return hierarchy.status().WithContext("eqm base mesh chunk");
   mesh.hierarchy = std::move(hierarchy).value();
   mesh.positions = std::move(base.positions);
-  EQMESH_RETURN_IF_ERROR(DecodeLevels(data, s, h, levels, &mesh));
+  if (h.coder == bitstream::CoderId::kZerotree) {
+    EQMESH_RETURN_IF_ERROR(DecodeZerotreeLevels(data, size, s, h, levels, &mesh));
+  } else {
+    EQMESH_RETURN_IF_ERROR(DecodeLevels(data, s, h, levels, &mesh));
+  }
   if (info) {
     info->stream = s;
     info->levels_in_stream = s.levels;

@@ -23,6 +23,8 @@
 #include "coding/rate_control.h"
 #include "coding/semi_regular_reorder.h"
 #include "coding/stream_header.h"
+#include "coding/zerotree/zerotree_coder.h"
+#include "coding/zerotree_encoder.h"
 
 #ifdef EQMESH_HAVE_METRICS
 #include "metrics/surface_distance.h"
@@ -162,26 +164,49 @@ struct Pass {
   EncodeReport report;
 };
 
-StatusOr<Pass> EncodeAtCode(const Prepared& prep, const EncodeOptions& options, int64_t code,
-                            std::deque<Renumbered>* cache) {
-  const SemiRegularMesh& mesh = *prep.mesh;
+StreamHeader MakeHeader(const Prepared& prep, const EncodeOptions& options, int64_t code) {
   StreamHeader header;
   header.transform = options.transform;
   header.coder = options.coder;
-  header.levels = mesh.hierarchy.levels();
+  header.levels = prep.mesh->hierarchy.levels();
   header.lambda_code = code;
   header.tangential_code = LogCode(options.tangential_factor);
   header.quantum = prep.quantum;
+  return header;
+}
+
+// The base candidate of least R + lambda D at the header's lambda.
+const DracoMeshEncoding& ChooseBase(const Prepared& prep, const StreamHeader& header, BaseRdReport* report) {
+  const double quantum = static_cast<double>(header.quantum);
+  const double lambda_world = header.lambda() / (quantum * quantum);
+  return prep.base_candidates[ChooseBaseCandidate(prep.base_candidates, prep.base, prep.base_weights,
+                                                  lambda_world, report)];
+}
+
+Pass FinishPass(const StreamHeader& header, const Prepared& prep, const std::vector<uint8_t>& base,
+                const std::vector<std::vector<uint8_t>>& chunks, const BaseRdReport& base_report,
+                const EncodeOptions& options) {
+  Pass pass;
+  pass.bytes = Assemble(header, base, prep.kept_bytes, chunks, &pass.report);
+  pass.report.lambda = header.lambda();
+  pass.report.lambda_code = static_cast<int>(header.lambda_code);
+  pass.report.base_bits = base_report.bits;
+  if (options.input_vertices > 0) {
+    pass.report.bpv = 8.0 * static_cast<double>(pass.bytes.size()) /
+                      static_cast<double>(options.input_vertices);
+  }
+  return pass;
+}
+
+StatusOr<Pass> EncodeAtCode(const Prepared& prep, const EncodeOptions& options, int64_t code,
+                            std::deque<Renumbered>* cache) {
+  const StreamHeader header = MakeHeader(prep, options, code);
   const LevelCodingParams params{options.coder, code, header.lambda(), header.tangential_factor(),
                                  static_cast<double>(header.quantum)};
-  const double lambda_world = params.lambda / (params.quantum * params.quantum);
-
-  Pass pass;
   BaseRdReport base_report;
-  const DracoMeshEncoding& base = prep.base_candidates[ChooseBaseCandidate(
-      prep.base_candidates, prep.base, prep.base_weights, lambda_world, &base_report)];
+  const DracoMeshEncoding& base = ChooseBase(prep, header, &base_report);
   EQMESH_ASSIGN_OR_RETURN(const Renumbered* target,
-                          RenumberCached(mesh, options.transform, base, cache));
+                          RenumberCached(*prep.mesh, options.transform, base, cache));
   const SemiRegularHierarchy& h = target->mesh.hierarchy;
   const LevelCoderFn coder = [&](int j, const std::vector<Vec3>& local,
                                  std::vector<Vec3>* reconstructed) {
@@ -192,15 +217,74 @@ StatusOr<Pass> EncodeAtCode(const Prepared& prep, const EncodeOptions& options, 
                                                 base.decoded.positions, coder, options.progress,
                                                 &chunks)
                              .status());
-  pass.bytes = Assemble(header, base.bytes, prep.kept_bytes, chunks, &pass.report);
-  pass.report.lambda = params.lambda;
-  pass.report.lambda_code = static_cast<int>(code);
-  pass.report.base_bits = base_report.bits;
-  if (options.input_vertices > 0) {
-    pass.report.bpv = 8.0 * static_cast<double>(pass.bytes.size()) /
-                      static_cast<double>(options.input_vertices);
+  return FinishPass(header, prep, base.bytes, chunks, base_report, options);
+}
+
+// Zerotree payload bytes that keep the whole stream within total_budget (never
+// below the smallest payload: a budget under the base chunk gives the smallest
+// stream there is).
+uint64_t ZerotreePayloadBudget(StreamHeader header, size_t base_bytes, size_t kept_bytes,
+                               uint64_t total_budget) {
+  header.base_size = base_bytes;
+  header.kept_size = kept_bytes;
+  if (kept_bytes > 0) header.flags |= bitstream::kHasKeptExactly;
+  header.level_sizes.assign(static_cast<size_t>(header.levels), 0);
+  header.level_sizes[0] = total_budget;  // an upper bound on the real size's varint
+  const uint64_t fixed = WriteStreamHeader(header).size() + base_bytes + kept_bytes;
+  const uint64_t least = ZerotreeMinBytes();
+  return total_budget > fixed + least ? total_budget - fixed : least;
+}
+
+// One zerotree pass (zerotree_encoder.h): lambda (the code) chooses the base and,
+// without a budget (total_budget 0), the last bit plane; *last_plane receives the
+// plane the payload ended in.
+StatusOr<Pass> EncodeZerotreeAtCode(const Prepared& prep, const EncodeOptions& options, int64_t code,
+                                    uint64_t total_budget, std::deque<Renumbered>* cache,
+                                    int* last_plane) {
+  const StreamHeader header = MakeHeader(prep, options, code);
+  BaseRdReport base_report;
+  const DracoMeshEncoding& base = ChooseBase(prep, header, &base_report);
+  EQMESH_ASSIGN_OR_RETURN(const Renumbered* target,
+                          RenumberCached(*prep.mesh, options.transform, base, cache));
+  const SemiRegularHierarchy& h = target->mesh.hierarchy;
+  std::vector<std::vector<uint8_t>> chunks(static_cast<size_t>(h.levels()));
+  *last_plane = 0;
+  if (h.levels() > 0) {
+    ReportProgress(options.progress, "encode zerotree", 0.0);
+    EQMESH_ASSIGN_OR_RETURN(const auto coeffs, ZerotreeCoefficients(h, options.transform, target->truth,
+                                                                    base.decoded.positions));
+    ZerotreeOptions zo;
+    zo.quantum = static_cast<double>(header.quantum);
+    zo.tangential_factor = header.tangential_factor();
+    if (total_budget > 0) {
+      zo.byte_budget = ZerotreePayloadBudget(header, base.bytes.size(), prep.kept_bytes.size(), total_budget);
+    } else {
+      zo.min_plane = ZerotreePlaneForLambda(header.lambda());
+    }
+    ZerotreeEncodeReport zr;
+    EQMESH_ASSIGN_OR_RETURN(chunks[0], EncodeZerotree(h, coeffs, zo, &zr));
+    *last_plane = zr.last_plane;
   }
-  return pass;
+  return FinishPass(header, prep, base.bytes, chunks, base_report, options);
+}
+
+// A byte budget cut exactly (embedded stream): a first pass at the start lambda
+// finds the plane the budget reaches; if that plane's lambda chooses another
+// base, the second pass codes with it (equal R-D slopes for base and details).
+StatusOr<Pass> EncodeZerotreeToBudget(const Prepared& prep, const EncodeOptions& options, uint64_t total_budget,
+                                      std::deque<Renumbered>* cache) {
+  int plane = 0;
+  const int64_t start = LogCode(options.lambda);
+  EQMESH_ASSIGN_OR_RETURN(Pass first, EncodeZerotreeAtCode(prep, options, start, total_budget, cache, &plane));
+  first.report.rate_evaluations = 1;
+  const int64_t code = LogCode(ZerotreeLambdaForPlane(plane));
+  BaseRdReport at_start, at_plane;
+  const StreamHeader start_header = MakeHeader(prep, options, start);
+  const StreamHeader plane_header = MakeHeader(prep, options, code);
+  if (&ChooseBase(prep, start_header, &at_start) == &ChooseBase(prep, plane_header, &at_plane)) return first;
+  EQMESH_ASSIGN_OR_RETURN(Pass second, EncodeZerotreeAtCode(prep, options, code, total_budget, cache, &plane));
+  second.report.rate_evaluations = 2;
+  return second;
 }
 
 StatusOr<double> MeasurePsnr(const std::vector<uint8_t>& bytes, const Mesh& original) {
@@ -212,6 +296,38 @@ StatusOr<double> MeasurePsnr(const std::vector<uint8_t>& bytes, const Mesh& orig
   (void)original;
   return UnsupportedFeature("PSNR measurement needs eqmesh_metrics, not in this build");
 #endif
+}
+
+uint64_t BudgetForBpv(double bpv, size_t input_vertices) {
+  return static_cast<uint64_t>(std::floor(bpv * static_cast<double>(input_vertices) / 8.0));
+}
+
+// PSNR target for the embedded coder: search the byte budget, not lambda.
+StatusOr<Pass> EncodeZerotreeForQuality(const Prepared& prep, const EncodeOptions& options,
+                                        std::deque<Renumbered>* cache) {
+  std::vector<Pass> passes;
+  BudgetEvaluator eval = [&](uint64_t budget) -> StatusOr<BudgetPoint> {
+    EQMESH_ASSIGN_OR_RETURN(Pass pass, EncodeZerotreeToBudget(prep, options, budget, cache));
+    EQMESH_ASSIGN_OR_RETURN(pass.report.psnr_db, MeasurePsnr(pass.bytes, *options.original));
+    pass.report.psnr_measured = true;
+    const BudgetPoint point{budget, pass.bytes.size(), pass.report.psnr_db};
+    passes.push_back(std::move(pass));
+    return point;
+  };
+  // Start from the stream the start lambda's bit plane gives.
+  int plane = 0;
+  EQMESH_ASSIGN_OR_RETURN(const Pass first, EncodeZerotreeAtCode(prep, options, LogCode(options.lambda), 0,
+                                                                 cache, &plane));
+  RateSearchReport search;
+  EQMESH_ASSIGN_OR_RETURN(const BudgetPoint chosen,
+                          SearchBudgetForQuality(eval, options.target_psnr, first.bytes.size(), 1, &search));
+  for (Pass& pass : passes) {
+    if (pass.bytes.size() == chosen.size && pass.report.psnr_db == chosen.psnr_db) {
+      pass.report.rate_evaluations = search.evaluations + 1;
+      return std::move(pass);
+    }
+  }
+  return InternalError("rate control lost its chosen point");
 }
 
 StatusOr<Pass> EncodeWithTarget(const Prepared& prep, const EncodeOptions& options,
@@ -256,7 +372,17 @@ StatusOr<std::vector<uint8_t>> Encode(const SemiRegularMesh& mesh, const EncodeO
   EQMESH_ASSIGN_OR_RETURN(Prepared prep, Prepare(mesh, options.transform));
   std::deque<Renumbered> cache;
   Pass pass;
-  if (options.target_bpv > 0 || options.target_psnr > 0) {
+  const bool zerotree = options.coder == bitstream::CoderId::kZerotree;
+  if (zerotree && options.target_bpv > 0) {
+    EQMESH_ASSIGN_OR_RETURN(pass, EncodeZerotreeToBudget(
+                                      prep, options, BudgetForBpv(options.target_bpv, options.input_vertices), &cache));
+  } else if (zerotree && options.target_psnr > 0) {
+    EQMESH_ASSIGN_OR_RETURN(pass, EncodeZerotreeForQuality(prep, options, &cache));
+  } else if (zerotree) {
+    int plane = 0;
+    EQMESH_ASSIGN_OR_RETURN(pass, EncodeZerotreeAtCode(prep, options, LogCode(options.lambda), 0, &cache, &plane));
+    pass.report.rate_evaluations = 1;
+  } else if (options.target_bpv > 0 || options.target_psnr > 0) {
     EQMESH_ASSIGN_OR_RETURN(pass, EncodeWithTarget(prep, options, &cache));
   } else {
     EQMESH_ASSIGN_OR_RETURN(pass, EncodeAtCode(prep, options, LogCode(options.lambda), &cache));

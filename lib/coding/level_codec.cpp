@@ -7,17 +7,14 @@
 #include "coding/entropy/range_coder.h"
 #include "coding/eq/eq_decoder.h"
 #include "coding/eq/eq_layout.h"
+#include "coding/uniform_model.h"
 
 namespace eqmesh {
 namespace {
 
 using uniform_coder::kMaxEscapePrefix;
+using uniform_coder::ComponentModel;
 using uniform_coder::kUnaryLimit;
-
-struct ComponentModel {
-  AdaptiveBit zero;
-  std::array<AdaptiveBit, kUnaryLimit> unary;
-};
 
 int64_t DecodeSymbol(RangeDecoder* rc, ComponentModel* m) {
   if (rc->DecodeBit(&m->zero) == 0) return 0;

@@ -27,7 +27,7 @@ struct LevelCodingParams {
   bitstream::CoderId coder = bitstream::CoderId::kEq;
   int64_t lambda_code = 0;          // header code: lambda = 2^(code / kLogCodeScale)
   double lambda = 1.0;              // per squared quantum (bitstream_shared.h)
-  double tangential_factor = 100.0;
+  double tangential_factor = 1.0;  // EncodeOptions::tangential_factor
   double quantum = 1.0;             // q0, world units
 };
 

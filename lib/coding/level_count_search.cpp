@@ -82,7 +82,7 @@ StatusOr<Candidate> ScanLevels(const SemiRegularMesh& mesh, const EncodeOptions&
   if (!have_best) {
     // No level count meets the PSNR target: the last (finest) one is the closest.
     out->chosen_levels = top;
-    return std::move(previous);
+    return previous;
   }
   return best;
 }

@@ -8,17 +8,14 @@
 #include "coding/entropy/range_coder.h"
 #include "coding/eq/eq_encoder.h"
 #include "coding/eq/eq_layout.h"
+#include "coding/uniform_model.h"
 
 namespace eqmesh {
 namespace {
 
 using uniform_coder::kMaxEscapePrefix;
+using uniform_coder::ComponentModel;
 using uniform_coder::kUnaryLimit;
-
-struct ComponentModel {
-  AdaptiveBit zero;
-  std::array<AdaptiveBit, kUnaryLimit> unary;
-};
 
 // Largest magnitude the decoder accepts (Exp-Golomb escape with kMaxEscapePrefix).
 constexpr int64_t kMaxMagnitude = kUnaryLimit + (int64_t{1} << kMaxEscapePrefix);

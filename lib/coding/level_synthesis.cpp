@@ -10,6 +10,15 @@ WaveletKind ToWaveletKind(bitstream::TransformId transform) {
   return transform == bitstream::TransformId::kLifted ? WaveletKind::kLifted : WaveletKind::kUnlifted;
 }
 
+Status CheckFiniteLevel(const std::vector<Vec3>& values, int level) {
+  for (const Vec3& v : values) {
+    if (!v.allFinite()) {
+      return CorruptStream("eqm level " + std::to_string(level) + " decodes to non-finite positions");
+    }
+  }
+  return Status::Ok();
+}
+
 Status LevelSynthesis::Synthesize(const std::vector<Vec3>& coarse,
                                   const std::vector<LocalFrame>& frames,
                                   const std::vector<Vec3>& local, std::vector<Vec3>* fine) const {

@@ -17,6 +17,10 @@ namespace eqmesh {
 
 WaveletKind ToWaveletKind(bitstream::TransformId transform);
 
+// kCorruptStream unless every decoded value of `level` is finite (a hostile stream
+// may reconstruct infinities; nothing downstream may see them).
+Status CheckFiniteLevel(const std::vector<Vec3>& values, int level);
+
 class LevelSynthesis {
  public:
   LevelSynthesis(const SemiRegularHierarchy& hierarchy, int j, bitstream::TransformId transform)

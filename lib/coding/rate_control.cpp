@@ -105,4 +105,52 @@ StatusOr<RatePoint> SearchForQuality(const RateEvaluator& eval, double target_ps
   return hi;
 }
 
+namespace {
+
+constexpr double kBudgetResolution = 1.01;
+
+// Doubles (or halves) the budget until the target flips; false when the stream
+// stops growing or the minimum is reached first (*best is then the answer).
+StatusOr<bool> BracketBudget(const BudgetEvaluator& eval, double target, uint64_t start, uint64_t min_budget,
+                             int* count, BudgetPoint* lo, BudgetPoint* hi) {
+  EQMESH_ASSIGN_OR_RETURN(BudgetPoint p, eval(std::max(start, min_budget)));
+  ++*count;
+  const bool up = p.psnr_db < target;
+  while (*count < kMaxEvaluations) {
+    if (up && p.size < p.budget) break;        // complete stream: more bytes change nothing
+    if (!up && p.budget <= min_budget) break;  // the smallest stream still meets it
+    const uint64_t next = up ? p.budget * 2 : std::max(min_budget, p.budget / 2);
+    EQMESH_ASSIGN_OR_RETURN(BudgetPoint q, eval(next));
+    ++*count;
+    if ((q.psnr_db < target) != up) {
+      *lo = up ? p : q;
+      *hi = up ? q : p;
+      return true;
+    }
+    p = q;
+  }
+  *lo = p;
+  *hi = p;
+  return false;
+}
+
+}  // namespace
+
+StatusOr<BudgetPoint> SearchBudgetForQuality(const BudgetEvaluator& eval, double target_psnr, uint64_t start,
+                                             uint64_t min_budget, RateSearchReport* report) {
+  int count = 0;
+  BudgetPoint lo, hi;
+  EQMESH_ASSIGN_OR_RETURN(const bool bracketed, BracketBudget(eval, target_psnr, start, min_budget, &count, &lo, &hi));
+  while (bracketed && static_cast<double>(hi.budget) > kBudgetResolution * static_cast<double>(lo.budget) &&
+         count < kMaxEvaluations) {
+    const auto mid = static_cast<uint64_t>(std::sqrt(static_cast<double>(lo.budget) * static_cast<double>(hi.budget)));
+    if (mid <= lo.budget || mid >= hi.budget) break;
+    EQMESH_ASSIGN_OR_RETURN(BudgetPoint p, eval(mid));
+    ++count;
+    (p.psnr_db >= target_psnr ? hi : lo) = p;
+  }
+  if (report) report->evaluations = count;
+  return hi;
+}
+
 }  // namespace eqmesh

@@ -36,4 +36,20 @@ StatusOr<RatePoint> SearchForRate(const RateEvaluator& eval, double target_bpv, 
 StatusOr<RatePoint> SearchForQuality(const RateEvaluator& eval, double target_psnr,
                                      int64_t start_code, RateSearchReport* report = nullptr);
 
+// Byte-budget search for embedded streams (coder 1, zerotree): a budget of B bytes
+// yields a stream of size <= B whose quality grows with B until the stream is
+// complete (size < B).
+struct BudgetPoint {
+  uint64_t budget = 0;
+  uint64_t size = 0;   // bytes of the stream the budget gave
+  double psnr_db = 0;
+};
+using BudgetEvaluator = std::function<StatusOr<BudgetPoint>(uint64_t budget)>;
+
+// The smallest budget (within 1 %) whose psnr_db >= target_psnr, searched by
+// doubling / halving from start and bisecting log(budget); the best point seen
+// when no budget reaches it (the complete stream or the evaluation cap).
+StatusOr<BudgetPoint> SearchBudgetForQuality(const BudgetEvaluator& eval, double target_psnr, uint64_t start,
+                                             uint64_t min_budget, RateSearchReport* report = nullptr);
+
 }  // namespace eqmesh

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "coding/byte_io.h"
+#include "coding/entropy/byte_io.h"
 
 namespace eqmesh {
 
@@ -71,9 +71,6 @@ Status ReadCodingSetup(ByteReader* r, StreamHeader* h) {
     return r->Corrupt("unknown transform id " + std::to_string(transform));
   }
   if (coder > bitstream::kMaxCoderId) return r->Corrupt("unknown coder id " + std::to_string(coder));
-  if (coder == static_cast<uint8_t>(bitstream::CoderId::kZerotree)) {
-    return UnsupportedFeature("eqm stream uses the zerotree coder, not in this build");
-  }
   if (levels > bitstream::kMaxLevels) {
     return r->Corrupt("level count " + std::to_string(levels) + " exceeds " +
                       std::to_string(bitstream::kMaxLevels));
@@ -93,6 +90,16 @@ Status ReadCodingSetup(ByteReader* r, StreamHeader* h) {
   return Status::Ok();
 }
 
+// Coder 1 carries one embedded payload for all levels as chunk 0 (ext_spec A.4).
+Status CheckZerotreeChunks(const ByteReader& r, const StreamHeader& h) {
+  if (h.coder != bitstream::CoderId::kZerotree || h.levels == 0) return Status::Ok();
+  if (h.level_sizes[0] == 0) return r.Corrupt("zerotree stream with an empty level payload");
+  for (size_t j = 1; j < h.level_sizes.size(); ++j) {
+    if (h.level_sizes[j] != 0) return r.Corrupt("zerotree stream with a non-empty level chunk " + std::to_string(j));
+  }
+  return Status::Ok();
+}
+
 Status ReadChunkTable(ByteReader* r, StreamHeader* h) {
   EQMESH_RETURN_IF_ERROR(r->ReadBoundedVarint(bitstream::kMaxChunkBytes, "base chunk size",
                                               &h->base_size));
@@ -106,7 +113,7 @@ Status ReadChunkTable(ByteReader* r, StreamHeader* h) {
   for (uint64_t& s : h->level_sizes) {
     EQMESH_RETURN_IF_ERROR(r->ReadBoundedVarint(bitstream::kMaxChunkBytes, "level chunk size", &s));
   }
-  return Status::Ok();
+  return CheckZerotreeChunks(*r, *h);
 }
 
 }  // namespace

@@ -21,6 +21,13 @@ constexpr double kKiteShrink = 0.9;
 constexpr double kMinChildQuality = 0.15;
 // Largest chart unfolded to reach a hit's input triangle or a midpoint's.
 constexpr size_t kMaxChartFaces = 4096;
+// Once a level has more faces than the input, forward maps of demoted midpoints
+// search a smaller chart: the input triangle under a midpoint then has its
+// corners a few face rings away, and a miss (target outside every mapped
+// triangle) would otherwise grow the full chart for every such vertex
+// (dragon_vrip, 1.8M new vertices: over 10 CPU minutes in one level). A miss
+// falls back to the closest input point.
+constexpr size_t kMaxFineForwardChartFaces = 256;
 
 using Vec3d = Eigen::Vector3d;
 
@@ -188,7 +195,8 @@ Vec3 LevelRefiner::ForwardMap(uint32_t root, const Vec3d& u, const Vec3& fallbac
   const Vec2 target = ToReference2d(u);
   double best = -1e300;
   Vec3 best_point = Vec3::Zero();
-  for (size_t visit = 0; visit < chart->size() || (visit < kMaxChartFaces && chart->Grow()); ++visit) {
+  const size_t max_faces = dom_.faces().size() > s_.mesh->faces.size() ? kMaxFineForwardChartFaces : kMaxChartFaces;
+  for (size_t visit = 0; visit < max_faces && (visit < chart->size() || chart->Grow()); ++visit) {
     const uint32_t f = chart->face(visit);
     for (uint32_t n = bucket_offsets_[f]; n < bucket_offsets_[f + 1]; ++n) {
       const uint32_t x = bucket_items_[n];
@@ -198,7 +206,7 @@ Vec3 LevelRefiner::ForwardMap(uint32_t root, const Vec3d& u, const Vec3& fallbac
         bool mapped = true;
         for (int i = 0; i < 3 && mapped; ++i) {
           Vec3d ui;
-          mapped = chart->Map(params_[tri[i]], &ui, kMaxChartFaces);
+          mapped = chart->Map(params_[tri[i]], &ui, max_faces);
           c2[i] = ToReference2d(ui);
         }
         Vec3d b;

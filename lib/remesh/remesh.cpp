@@ -28,6 +28,9 @@ constexpr double kAutoTargetPsnrDb = 86.0;
 constexpr double kAutoMinGainDb = 0.5;
 // ... or before the finest level would exceed this multiple of the input vertices.
 constexpr double kAutoMaxVertexFactor = 24.0;
+// ... or beyond this many vertices at all: the codec's level search never keeps
+// such levels below 4 bpv, and memory grows ~400 bytes per remesh vertex.
+constexpr uint64_t kAutoMaxVertices = 3'000'000;
 constexpr int kMaxLevels = 10;
 // Components with fewer vertices are carried as they are (kept_exactly).
 constexpr size_t kMinComponentVertices = 20;
@@ -148,6 +151,7 @@ bool StopRefining(const RemeshOptions& options, int levels_done, const std::vect
   if (options.levels >= 0) return levels_done >= options.levels;
   if (levels_done >= kMaxLevels) return true;
   if (static_cast<double>(next_vertices) > kAutoMaxVertexFactor * static_cast<double>(input_vertices)) return true;
+  if (next_vertices > kAutoMaxVertices) return true;
   if (psnr.empty()) return false;
   if (psnr.back() >= kAutoTargetPsnrDb) return true;
   return psnr.size() >= 3 && psnr.back() - psnr[psnr.size() - 2] < kAutoMinGainDb;

@@ -47,7 +47,7 @@ EncodeOptions GoldenOptions() {
 }
 
 std::string GoldenPath() {
-  return std::string(EQMESH_SOURCE_DIR) + "/tests/codec/data/golden_v1_0.eqm";
+  return std::string(EQMESH_SOURCE_DIR) + "/tests/codec/data/golden_v1_1.eqm";
 }
 
 std::vector<uint8_t> ReadBytes(const std::string& path) {

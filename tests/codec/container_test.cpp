@@ -6,7 +6,7 @@
 #include "codec_fixtures.h"
 #include "coding/base_mesh_decoder.h"
 #include "coding/base_mesh_encoder.h"
-#include "coding/byte_io.h"
+#include "coding/entropy/byte_io.h"
 #include "coding/semi_regular_reorder.h"
 #include "coding/stream_header.h"
 #include "test_support.h"
@@ -98,13 +98,26 @@ TEST(StreamHeader, RejectsBadMagicVersionCoderAndFlags) {
   EXPECT_EQ(with(4, bitstream::kVersionMajor + 1), StatusCode::kUnsupportedVersion);
   EXPECT_EQ(with(5, 99), StatusCode::kOk);  // newer minor: readable
   EXPECT_EQ(with(6, 7), StatusCode::kCorruptStream);   // transform
-  EXPECT_EQ(with(7, 1), StatusCode::kUnsupportedFeature);  // zerotree reserved
+  // Zerotree (coder 1) carries one embedded payload: chunks 1.. must be empty.
+  EXPECT_EQ(with(7, 1), StatusCode::kCorruptStream);
   EXPECT_EQ(with(7, 9), StatusCode::kCorruptStream);
   EXPECT_EQ(with(8, bitstream::kMaxLevels + 1), StatusCode::kCorruptStream);
   EXPECT_EQ(with(9, 0x80), StatusCode::kCorruptStream);
   for (size_t n = 0; n < good.size(); ++n) {
     EXPECT_FALSE(ReadStreamHeader(good.data(), n, &size).ok()) << n;
   }
+}
+
+TEST(StreamHeader, ZerotreeHasOneNonEmptyPayloadChunk) {
+  StreamHeader h = SampleHeader();
+  h.coder = bitstream::CoderId::kZerotree;
+  size_t size = 0;
+  h.level_sizes = {4310, 0, 0};
+  std::vector<uint8_t> b = WriteStreamHeader(h);
+  EXPECT_TRUE(ReadStreamHeader(b.data(), b.size(), &size).ok());
+  h.level_sizes = {0, 0, 0};
+  b = WriteStreamHeader(h);
+  EXPECT_EQ(ReadStreamHeader(b.data(), b.size(), &size).status().code(), StatusCode::kCorruptStream);
 }
 
 TEST(BaseMesh, DracoRoundTripGivesPermutationAndBoundedError) {

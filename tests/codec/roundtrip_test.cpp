@@ -185,5 +185,19 @@ TEST(Golden, StreamIsReproducedAndDecodes) {
   EXPECT_LE(testing::MaxNearestDistance(decoded->positions, mesh.positions), 0.02 * diagonal);
 }
 
+// Version 1.1 only added coder 1: the 1.0 golden (same EQ bytes but the minor
+// version byte) must still decode to the same mesh.
+TEST(Golden, Version10StreamStillDecodes) {
+  std::vector<uint8_t> old = testing::ReadBytes(std::string(EQMESH_SOURCE_DIR) + "/tests/codec/data/golden_v1_0.eqm");
+  ASSERT_FALSE(old.empty());
+  const std::vector<uint8_t> current = testing::ReadBytes(testing::GoldenPath());
+  ASSERT_EQ(old.size(), current.size());
+  EXPECT_EQ(old[5], 0);
+  old[5] = bitstream::kVersionMinor;
+  EXPECT_EQ(old, current);
+  auto decoded = Decode(old.data(), old.size());
+  EXPECT_TRUE(decoded.ok()) << decoded.status().ToString();
+}
+
 }  // namespace
 }  // namespace eqmesh

@@ -71,20 +71,23 @@ class SpihtEngine {
     for (int c = 0; c < kChannels; ++c) Init(c, tops[static_cast<size_t>(c)]);
   }
 
-  // Codes planes down to min_plane or until the coder refuses a symbol.
-  void Run(int min_plane) {
+  // Codes planes down to min_plane or until the coder refuses a symbol. Returns
+  // the plane being coded when the run ended (min_plane when it completed; top + 1
+  // when there was nothing to code): rate control reads the R-D slope from it.
+  int Run(int min_plane) {
     int top = -1;
     for (const ChannelState& s : state_) top = std::max(top, s.top);
     for (int n = top; n >= min_plane; --n) {
       std::array<size_t, kChannels> old{};
       for (int c = 0; c < kChannels; ++c) old[c] = state_[c].lsp.size();
       for (int c = 0; c < kChannels; ++c) {
-        if (n <= state_[c].top && !SortingPass(c, n)) return;
+        if (n <= state_[c].top && !SortingPass(c, n)) return n;
       }
       for (int c = 0; c < kChannels; ++c) {
-        if (!RefinementPass(c, n, old[c])) return;
+        if (!RefinementPass(c, n, old[c])) return n;
       }
     }
+    return top >= min_plane ? min_plane : top + 1;
   }
 
   const ChannelState& channel(int c) const { return state_[c]; }

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <string>
 
+#include "coding/entropy/byte_io.h"
 #include "coding/zerotree/bit_io.h"
 #include "coding/zerotree/edge_tree.h"
 #include "coding/zerotree/spiht_engine.h"
@@ -22,35 +23,7 @@ constexpr size_t kFixedHeaderBytes = 6;
 constexpr int kMaxHeaderLevels = 16;
 constexpr double kMaxMagnitude = 2199023255551.0;  // 2^41 - 1
 
-size_t VarintSize(uint64_t v) {
-  size_t n = 1;
-  while (v >= 0x80) {
-    v >>= 7;
-    ++n;
-  }
-  return n;
-}
-
 size_t HeaderBytes(uint64_t symbols) { return kFixedHeaderBytes + VarintSize(symbols); }
-
-void PutVarint(uint64_t v, std::vector<uint8_t>* out) {
-  while (v >= 0x80) {
-    out->push_back(static_cast<uint8_t>(v | 0x80));
-    v >>= 7;
-  }
-  out->push_back(static_cast<uint8_t>(v));
-}
-
-bool ReadVarint(const uint8_t* data, size_t size, size_t* pos, uint64_t* v) {
-  *v = 0;
-  for (int shift = 0; shift < 63; shift += 7) {
-    if (*pos >= size) return false;
-    const uint8_t b = data[(*pos)++];
-    *v |= static_cast<uint64_t>(b & 0x7F) << shift;
-    if (!(b & 0x80)) return true;
-  }
-  return false;
-}
 
 // Integer units per world unit of channel c at level j (see the header).
 double Scale(int c, int j, int levels, int level_shift, double quantum, double tangential_factor) {
@@ -130,11 +103,14 @@ int TopPlane(const ChannelTruth& t) {
 
 std::vector<uint8_t> AssembleStream(int levels, int level_shift, const std::array<int, kChannels>& tops,
                                     uint64_t symbols, const std::vector<uint8_t>& payload) {
-  std::vector<uint8_t> out = {kZerotreeVersion, static_cast<uint8_t>(levels), static_cast<uint8_t>(level_shift)};
-  for (int top : tops) out.push_back(static_cast<uint8_t>(top + 1));
-  PutVarint(symbols, &out);
-  out.insert(out.end(), payload.begin(), payload.end());
-  return out;
+  ByteWriter out;
+  out.PutU8(kZerotreeVersion);
+  out.PutU8(static_cast<uint8_t>(levels));
+  out.PutU8(static_cast<uint8_t>(level_shift));
+  for (int top : tops) out.PutU8(static_cast<uint8_t>(top + 1));
+  out.PutVarint(symbols);
+  out.PutBytes(payload);
+  return out.Take();
 }
 
 struct EncodeSetup {
@@ -145,10 +121,11 @@ struct EncodeSetup {
 
 // One coding run limited by budget and symbol count; returns the whole stream.
 std::vector<uint8_t> RunEncoder(const EncodeSetup& setup, const ZerotreeOptions& o, uint64_t symbol_limit,
-                                uint64_t* symbols) {
+                                uint64_t* symbols, int* last_plane = nullptr) {
   zerotree::BudgetedEncoder sink(zerotree::kNumContexts, o.byte_budget, &HeaderBytes, symbol_limit);
   zerotree::SpihtEngine<zerotree::BudgetedEncoder> engine(setup.tree, setup.tops, setup.truth.data(), &sink);
-  engine.Run(o.min_plane);
+  const int plane = engine.Run(o.min_plane);
+  if (last_plane) *last_plane = plane;
   *symbols = sink.symbols();
   return AssembleStream(setup.tree.levels, o.level_shift, setup.tops, sink.symbols(), sink.Finish());
 }
@@ -189,9 +166,19 @@ Status ValidateShapes(const SemiRegularHierarchy& h, const std::vector<std::vect
 
 }  // namespace
 
+size_t ZerotreeMinBytes() { return HeaderBytes(0); }
+
+bool ZerotreeHeaderComplete(const uint8_t* data, size_t size) {
+  if (data == nullptr || size <= kFixedHeaderBytes) return false;
+  for (size_t i = kFixedHeaderBytes; i < size; ++i) {
+    if ((data[i] & 0x80) == 0) return true;  // last byte of the symbol count
+  }
+  return false;
+}
+
 StatusOr<std::vector<uint8_t>> EncodeZerotree(const SemiRegularHierarchy& hierarchy,
                                               const std::vector<std::vector<Vec3>>& coeffs,
-                                              const ZerotreeOptions& options) {
+                                              const ZerotreeOptions& options, ZerotreeEncodeReport* report) {
   EQMESH_RETURN_IF_ERROR(ValidateOptions(coeffs, options));
   EQMESH_RETURN_IF_ERROR(ValidateShapes(hierarchy, coeffs));
   if (options.byte_budget != 0 && options.byte_budget < HeaderBytes(0)) {
@@ -206,10 +193,12 @@ StatusOr<std::vector<uint8_t>> EncodeZerotree(const SemiRegularHierarchy& hierar
     setup.tops[static_cast<size_t>(c)] = TopPlane(setup.truth[static_cast<size_t>(c)]);
   }
   uint64_t symbols = 0;
-  std::vector<uint8_t> stream = RunEncoder(setup, options, ~uint64_t{0}, &symbols);
+  int last_plane = 0;
+  std::vector<uint8_t> stream = RunEncoder(setup, options, ~uint64_t{0}, &symbols, &last_plane);
   if (options.byte_budget != 0 && stream.size() > options.byte_budget) {
     stream = FitBudget(setup, options, std::move(stream), symbols);
   }
+  if (report) report->last_plane = last_plane;
   return stream;
 }
 
@@ -244,9 +233,9 @@ StatusOr<StreamHeader> ParseHeader(const SemiRegularHierarchy& h, const uint8_t*
     if (top > kMaxPlane) return CorruptStream("zerotree stream: top bit plane out of range");
     hdr.tops[static_cast<size_t>(c)] = top;
   }
-  size_t pos = kFixedHeaderBytes;
-  if (!ReadVarint(data, size, &pos, &hdr.symbols)) return CorruptStream("zerotree stream: truncated symbol count");
-  hdr.payload_offset = pos;
+  ByteReader reader(data + kFixedHeaderBytes, size - kFixedHeaderBytes, "zerotree stream symbol count");
+  EQMESH_RETURN_IF_ERROR(reader.ReadVarint(&hdr.symbols));
+  hdr.payload_offset = kFixedHeaderBytes + reader.offset();
   return hdr;
 }
 

@@ -61,12 +61,27 @@ struct ZerotreeOptions {
   int level_shift = 1;              // s above, 0..kZerotreeMaxLevelShift
 };
 
+struct ZerotreeEncodeReport {
+  // Bit plane being coded when the stream ended (min_plane when it ran to the
+  // end): the finest level's quantizer step is then ~2^last_plane quanta, which is
+  // what rate control turns into an R-D slope.
+  int last_plane = 0;
+};
+
 // Codes coeffs (coeffs.size() <= hierarchy.levels(), coeffs[j].size() ==
 // NumOddVertices(j)). The stream never exceeds byte_budget; a budget below the
-// smallest stream (the header) is an error. Deterministic.
+// smallest stream (ZerotreeMinBytes(), the header) is an error. Deterministic.
 StatusOr<std::vector<uint8_t>> EncodeZerotree(const SemiRegularHierarchy& hierarchy,
                                               const std::vector<std::vector<Vec3>>& coeffs,
-                                              const ZerotreeOptions& options);
+                                              const ZerotreeOptions& options,
+                                              ZerotreeEncodeReport* report = nullptr);
+
+// Bytes of the smallest stream (the header of an empty one).
+size_t ZerotreeMinBytes();
+
+// Whether a stream prefix holds the whole header (fixed fields and symbol count),
+// valid or not: a shorter prefix of a truncated container decodes no level.
+bool ZerotreeHeaderComplete(const uint8_t* data, size_t size);
 
 // Decodes a stream or any prefix of it that holds the header; returns levels()
 // of the header entries, coeffs[j] with NumOddVertices(j) entries each.

@@ -1,4 +1,4 @@
-#include "coding/byte_io.h"
+#include "coding/entropy/byte_io.h"
 
 #include <cmath>
 #include <cstring>

@@ -1,0 +1,81 @@
+// Level-count search (coding/level_count_search.h): truncation is exact, the
+// chosen stream meets the rate and is never worse than coding every level.
+#include <gtest/gtest.h>
+
+#include "codec_fixtures.h"
+#include "coding/decoder.h"
+#include "coding/level_count_search.h"
+#include "metrics/surface_distance.h"
+
+namespace eqmesh {
+namespace {
+
+using testing::MakeBumpySphere;
+
+Mesh Finest(const SemiRegularMesh& m) { return ExtractLevel(m, m.hierarchy.levels()); }
+
+TEST(LevelCount, TruncationKeepsTheCoarseLevelsExactly) {
+  const SemiRegularMesh full = MakeBumpySphere(4);
+  auto cut = TruncateLevels(full, 2);
+  ASSERT_TRUE(cut.ok()) << cut.status().message();
+  EXPECT_EQ(cut->hierarchy.levels(), 2);
+  ASSERT_EQ(cut->positions.size(), full.hierarchy.NumVertices(2));
+  for (size_t v = 0; v < cut->positions.size(); ++v) EXPECT_EQ(cut->positions[v], full.positions[v]);
+  EXPECT_EQ(cut->hierarchy.Faces(2), full.hierarchy.Faces(2));
+  EXPECT_FALSE(TruncateLevels(full, 5).ok());
+  EXPECT_FALSE(TruncateLevels(full, -1).ok());
+}
+
+TEST(LevelCount, ChosenStreamMeetsTheRateAndBeatsAllLevels) {
+  const SemiRegularMesh mesh = MakeBumpySphere(4);
+  const Mesh original = Finest(mesh);
+  EncodeOptions options;
+  options.input_vertices = original.positions.size();
+  options.original = &original;
+  options.target_bpv = 2.0;
+  EncodeReport report;
+  LevelCountReport levels;
+  auto bytes = EncodeChoosingLevels(mesh, options, &report, &levels);
+  ASSERT_TRUE(bytes.ok()) << bytes.status().message();
+  ASSERT_FALSE(levels.trials.empty());
+  EXPECT_GE(levels.chosen_levels, 1);
+  EXPECT_LE(levels.chosen_levels, mesh.hierarchy.levels());
+  EXPECT_LE(report.bpv, 2.0 * 1.03);
+  auto decoded = Decode(bytes->data(), bytes->size());
+  ASSERT_TRUE(decoded.ok());
+  for (const LevelCountTrial& t : levels.trials) {
+    EXPECT_GE(report.psnr_db + 1e-9, t.psnr_db) << "level count " << t.levels << " was better";
+  }
+}
+
+TEST(LevelCount, WithoutTargetEveryLevelIsCoded) {
+  const SemiRegularMesh mesh = MakeBumpySphere(3);
+  EncodeOptions options;
+  LevelCountReport levels;
+  auto bytes = EncodeChoosingLevels(mesh, options, nullptr, &levels);
+  ASSERT_TRUE(bytes.ok()) << bytes.status().message();
+  EXPECT_EQ(levels.chosen_levels, 3);
+  EXPECT_TRUE(levels.trials.empty());
+}
+
+TEST(LevelCount, PsnrTargetGivesTheSmallestStreamThatMeetsIt) {
+  const SemiRegularMesh mesh = MakeBumpySphere(4);
+  const Mesh original = Finest(mesh);
+  EncodeOptions options;
+  options.input_vertices = original.positions.size();
+  options.original = &original;
+  options.target_psnr = 50.0;
+  EncodeReport report;
+  LevelCountReport levels;
+  auto bytes = EncodeChoosingLevels(mesh, options, &report, &levels);
+  ASSERT_TRUE(bytes.ok()) << bytes.status().message();
+  EXPECT_GE(report.psnr_db, 50.0);
+  for (const LevelCountTrial& t : levels.trials) {
+    if (t.feasible) {
+      EXPECT_LE(bytes->size(), t.bytes);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace eqmesh
