@@ -772,6 +772,17 @@ def write_summary(bench, started, path):
                 fmt(r["encode_peak_kb"] and r["encode_peak_kb"] / 1024.0, "%.0f"),
                 fmt(r["decode_peak_kb"] and r["decode_peak_kb"] / 1024.0, "%.0f")))
         L.append("")
+        lv = [r for r in rows if r["mesh"] == mesh and r["codec"] == "eqmesh-level" and not r["error"]]
+        if lv:
+            L.append("### Progressive decoding (`decode --level K` of the highest-rate EQ streams)")
+            L.append("")
+            L.append("| variant | stream @ level | vertices | bytes read | PSNR | decode s |")
+            L.append("|---|---|---|---|---|---|")
+            for r in lv:
+                L.append("| %s | %s | %s | %s | %s | %s |" % (
+                    r["variant"], r["param"], fmt(r["output_vertices"], "%d"),
+                    fmt(r["bytes_payload"], "%d"), fmt(r["psnr_db"]), fmt(r["decode_s"], "%.4f")))
+            L.append("")
         # peers
         L.append("### Peers")
         L.append("")
