@@ -231,11 +231,6 @@ int RunEncode(int argc, char** argv) {
   }
   if (a.base_vertices == 0) return Fail(kName, "--base-vertices must be positive or -1");
   if (EndsWith(a.out_path, ".gltf")) return Fail(kName, a.out_path + ": write .glb (binary glTF) or .eqm");
-  if (EndsWith(a.out_path, ".glb") && a.coder == "zerotree") {
-    // Its one embedded payload leaves levelByteRanges 2..J empty, which glTF validity
-    // rule 10 forbids (ext_spec A.4, coder 1).
-    return Fail(kName, a.out_path + ": --coder zerotree writes .eqm only (glTF needs one chunk per level)");
-  }
   if (EndsWith(a.out_path, ".glb")) return EncodeToGlb(a);
 
   const bool srm_input = EndsWith(a.in_path, ".srm");

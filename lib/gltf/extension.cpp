@@ -38,7 +38,8 @@ Status ReadRanges(const tinygltf::Value& array, std::vector<ByteRange>* ranges) 
   return Status::Ok();
 }
 
-// Rule 10 without the buffer view: contiguous, from 0, no empty chunk.
+// Rule 10 without the buffer view and the coder: contiguous from 0; ranges 0 and 1
+// non-empty; ranges 2..J all non-empty or (coder 1, checked later) all empty.
 Status CheckRangesTile(const std::vector<ByteRange>& ranges) {
   uint64_t expected = 0;
   for (size_t i = 0; i < ranges.size(); ++i) {
@@ -46,7 +47,13 @@ Status CheckRangesTile(const std::vector<ByteRange>& ranges) {
       return ParseError("levelByteRanges[" + std::to_string(i) + "] starts at " +
                         std::to_string(ranges[i].offset) + ", expected " + std::to_string(expected));
     }
-    if (ranges[i].length == 0) return ParseError("levelByteRanges[" + std::to_string(i) + "] is empty");
+    if (ranges[i].length == 0 && i < 2) {
+      return ParseError("levelByteRanges[" + std::to_string(i) + "] is empty (rule 10)");
+    }
+    if (i > 2 && (ranges[i].length == 0) != (ranges[2].length == 0)) {
+      return ParseError("levelByteRanges[2.." + std::to_string(ranges.size() - 1) +
+                        "] mix empty and non-empty ranges (rule 10)");
+    }
     expected = ranges[i].end();
   }
   return Status::Ok();
@@ -171,6 +178,18 @@ Status CheckExtensionAgainstModel(const NormalMeshExtension& ext, const tinygltf
   if (ext.level_ranges.back().end() != view.byteLength) {
     return ParseError("levelByteRanges end at " + std::to_string(ext.level_ranges.back().end()) +
                       " but the bufferView holds " + std::to_string(view.byteLength) + " bytes (rule 10)");
+  }
+  return Status::Ok();
+}
+
+Status CheckRangesForCoder(const NormalMeshExtension& ext, int coder) {
+  if (coder == kEmbeddedCoderId) return Status::Ok();  // the stream header pins its sizes (rule 11)
+  for (size_t i = 0; i < ext.level_ranges.size(); ++i) {
+    if (ext.level_ranges[i].length == 0) {
+      return ParseError("levelByteRanges[" + std::to_string(i) + "] is empty, which only coder " +
+                        std::to_string(kEmbeddedCoderId) + " streams allow; this stream uses coder " +
+                        std::to_string(coder) + " (rule 10)");
+    }
   }
   return Status::Ok();
 }

@@ -16,6 +16,9 @@ namespace eqmesh::gltf {
 inline constexpr char kExtensionName[] = "EXT_normal_mesh_compression";
 // Stream levels the spec allows (validity rule 9; bitstream kMaxLevels).
 inline constexpr int kMaxExtensionLevels = 12;
+// Stream coder id whose level data is one embedded payload (ext_spec A.4, coder 1):
+// levelByteRanges[1] holds it and ranges 2..J are empty (rule 10).
+inline constexpr int kEmbeddedCoderId = 1;
 
 struct ByteRange {
   uint64_t offset = 0;
@@ -33,7 +36,9 @@ struct NormalMeshExtension {
 };
 
 // Reads the extension object. Checks the JSON shape and the rules that need nothing
-// but the object itself (9, and 10 except the end-of-buffer-view check).
+// but the object itself (9, and 10 except the end-of-buffer-view check and the
+// coder: ranges 0 and 1 must be non-empty, ranges 2..J either all non-empty or all
+// empty, the latter only valid for coder 1; see CheckRangesForCoder).
 StatusOr<NormalMeshExtension> ParseExtension(const tinygltf::Value& value);
 
 // The extension object as tinygltf stores it.
@@ -43,6 +48,10 @@ tinygltf::Value ExtensionToValue(const NormalMeshExtension& ext);
 // `fallback` says whether placeholder accessors may have data (rule 12).
 Status CheckExtensionAgainstModel(const NormalMeshExtension& ext, const tinygltf::Primitive& primitive,
                                   const tinygltf::Model& model, bool fallback);
+
+// The coder half of rule 10, once the stream header is known: empty ranges (2..J,
+// all of them) only for kEmbeddedCoderId, none for every other coder.
+Status CheckRangesForCoder(const NormalMeshExtension& ext, int coder);
 
 // Contiguous ranges starting at 0 from chunk lengths (level 0 first): rule 10's form.
 std::vector<ByteRange> RangesFromLengths(const std::vector<uint64_t>& lengths);

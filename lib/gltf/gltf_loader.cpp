@@ -31,12 +31,13 @@ StatusOr<std::vector<uint8_t>> StreamPrefix(const tinygltf::Model& model, const 
   return std::vector<uint8_t>(first, first + static_cast<std::ptrdiff_t>(size));
 }
 
-// Rule 11: the stream header restates the JSON.
+// Rules 10 (the coder half) and 11: the stream header restates the JSON.
 Status CheckStreamAgreesWithJson(const DecodedStream& decoded, const NormalMeshExtension& ext, int level) {
   if (decoded.stream_levels != ext.levels) {
     return CorruptStream("the stream has " + std::to_string(decoded.stream_levels) +
                          " levels, the extension says " + std::to_string(ext.levels) + " (rule 11)");
   }
+  EQMESH_RETURN_IF_ERROR(CheckRangesForCoder(ext, decoded.coder));
   if (RangesFromLengths(decoded.chunk_lengths) != ext.level_ranges) {
     return CorruptStream("the stream's chunk sizes differ from levelByteRanges (rule 11)");
   }

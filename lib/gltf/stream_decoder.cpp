@@ -31,6 +31,7 @@ StreamDecoderFn EqmeshStreamDecoder() {
     out.stream_levels = info.levels_in_stream;
     out.level_decoded = info.levels_decoded;
     out.chunk_lengths = ChunkLengths(info.stream);
+    out.coder = static_cast<int>(info.stream.coder);
     return out;
   };
 }

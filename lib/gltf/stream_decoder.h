@@ -18,6 +18,10 @@ struct DecodedStream {
   int stream_levels = 0;               // J as the stream header states it
   int level_decoded = 0;               // K
   std::vector<uint64_t> chunk_lengths; // J + 1: header+base+kept, then each level chunk
+  // The header's coder id (ext_spec A.2 field 5): coder 1 (zerotree) carries every
+  // level in chunk 1 and leaves chunks 2..J empty, which validity rule 10 allows
+  // for that coder only.
+  int coder = 0;
 };
 
 // Decodes `size` bytes (the stream, or a prefix reaching the end of level

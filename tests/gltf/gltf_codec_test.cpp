@@ -174,6 +174,66 @@ TEST(GltfCodec, MeshFileInputBecomesAOneMeshScene) {
   EXPECT_GE(VertexPsnr(Pebble(), *mesh), kTargetPsnr - kVertexMeterTolerance);
 }
 
+// Coder 1 (zerotree) streams carry all levels in one embedded payload: range 1
+// holds it, ranges 2..J are empty (rule 10), and every level K >= 1 reads both.
+TEST(GltfCodec, ZerotreePrimitiveRoundTripsWithEmptyLevelRanges) {
+  const std::string input = testing::TempPath("pebble_zt_in.glb");
+  const std::string compressed = testing::TempPath("pebble_zerotree.glb");
+  ASSERT_TRUE(gltf::WriteGlb(testing::MakeSingleMeshModel(Pebble()), input).ok());
+  gltf::ConvertOptions options = Options();
+  options.codec.coder = bitstream::CoderId::kZerotree;
+  auto report = gltf::ConvertToCompressedGltf(input, compressed, options);
+  ASSERT_TRUE(report.ok()) << report.status().ToString();
+  ASSERT_EQ(report->compressed, 1u) << report->primitives[0].reason;
+  const int levels = report->primitives[0].levels;
+  ASSERT_GE(levels, 2) << "needs empty ranges to be a test of rule 10";
+  EXPECT_GE(report->primitives[0].psnr_db, kTargetPsnr - 0.5);
+
+  auto raw = gltf::ReadGltfModel(compressed);
+  ASSERT_TRUE(raw.ok()) << raw.status().ToString();
+  auto ext = gltf::ParseExtension(raw->meshes[0].primitives[0].extensions.at(gltf::kExtensionName));
+  ASSERT_TRUE(ext.ok()) << ext.status().ToString();
+  EXPECT_GT(ext->level_ranges[1].length, 0u);
+  for (int j = 2; j <= levels; ++j) EXPECT_EQ(ext->level_ranges[static_cast<size_t>(j)].length, 0u) << j;
+  const tinygltf::BufferView& view = raw->bufferViews[static_cast<size_t>(ext->buffer_view)];
+  auto info = ReadStreamInfo(raw->buffers[0].data.data() + view.byteOffset, view.byteLength);
+  ASSERT_TRUE(info.ok());
+  EXPECT_EQ(info->coder, bitstream::CoderId::kZerotree);
+
+  // Full load: exactly what the codec decodes.
+  auto reference = Decode(raw->buffers[0].data.data() + view.byteOffset, view.byteLength);
+  ASSERT_TRUE(reference.ok()) << reference.status().ToString();
+  auto model = gltf::LoadGltf(compressed);
+  ASSERT_TRUE(model.ok()) << model.status().ToString();
+  auto decoded = gltf::ReadTrianglePrimitive(*model, model->meshes[0].primitives[0]);
+  ASSERT_TRUE(decoded.ok()) << decoded.status().ToString();
+  ASSERT_EQ(reference->positions.size(), decoded->positions.size());
+  EXPECT_EQ(reference->faces, decoded->faces);
+  for (size_t i = 0; i < decoded->positions.size(); ++i) {
+    EXPECT_LT((reference->positions[i] - decoded->positions[i]).norm(), 1e-6 * BoundingBoxDiagonal(Pebble()));
+  }
+  EXPECT_GE(VertexPsnr(Pebble(), *decoded), kTargetPsnr - kVertexMeterTolerance);
+
+  // Every level: its own counts; level 0 reads range 0 only, the others ranges 0 and 1.
+  for (int k = 0; k <= levels; ++k) {
+    gltf::LoadOptions coarse;
+    coarse.max_level = k;
+    gltf::LoadReport load;
+    auto level = gltf::LoadGltf(compressed, coarse, &load);
+    ASSERT_TRUE(level.ok()) << "K=" << k << ": " << level.status().ToString();
+    EXPECT_EQ(load.decoded[0].level_decoded, k);
+    EXPECT_EQ(load.decoded[0].stream_bytes_read, ext->level_ranges[k == 0 ? 0 : 1].end()) << k;
+    auto mesh = gltf::ReadTrianglePrimitive(*level, level->meshes[0].primitives[0]);
+    ASSERT_TRUE(mesh.ok());
+    EXPECT_EQ(mesh->faces.size(), reference->faces.size() >> (2 * (levels - k))) << k;
+  }
+
+  std::string why;
+  const auto validated = testing::RunKhronosValidator(compressed, &why);
+  if (!validated) GTEST_SKIP() << why;
+  EXPECT_EQ(validated->errors, 0) << validated->messages;
+}
+
 TEST(GltfCodec, KhronosValidatorAcceptsCompressedAndDecodedFiles) {
   const Converted& c = PebbleConverted();
   ASSERT_TRUE(c.status.ok()) << c.status.ToString();

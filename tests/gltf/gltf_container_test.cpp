@@ -85,6 +85,36 @@ std::vector<uint8_t> CompressedRichScene(bool fallback, gltf::ConvertReport* rep
   return bytes.ok() ? *bytes : std::vector<uint8_t>{};
 }
 
+// The fake stream dressed as an embedded (coder 1) stream: its level chunks are
+// announced as one range 1 and empty ranges 2..J, and the decoder reports `coder`.
+gltf::DecodedStream AsEmbedded(gltf::DecodedStream d, int coder) {
+  uint64_t levels_bytes = 0;
+  for (size_t j = 1; j < d.chunk_lengths.size(); ++j) levels_bytes += d.chunk_lengths[j];
+  for (size_t j = 1; j < d.chunk_lengths.size(); ++j) d.chunk_lengths[j] = j == 1 ? levels_bytes : 0;
+  d.coder = coder;
+  return d;
+}
+
+gltf::GeometryCompressor EmbeddedFakeCompressor(int levels) {
+  return [levels](const Mesh& mesh, const std::string& label) -> StatusOr<gltf::CompressedGeometry> {
+    EQMESH_ASSIGN_OR_RETURN(gltf::CompressedGeometry out, testing::FakeCompressor(levels)(mesh, label));
+    gltf::DecodedStream lengths;
+    lengths.chunk_lengths = out.chunk_lengths;
+    out.chunk_lengths = AsEmbedded(std::move(lengths), gltf::kEmbeddedCoderId).chunk_lengths;
+    return out;
+  };
+}
+
+gltf::LoadOptions EmbeddedFakeLoad(int coder, int max_level = -1) {
+  gltf::LoadOptions options;
+  options.max_level = max_level;
+  options.decoder = [coder](const uint8_t* data, size_t size, int level) -> StatusOr<gltf::DecodedStream> {
+    EQMESH_ASSIGN_OR_RETURN(gltf::DecodedStream d, testing::DecodeFakeStream(data, size, level));
+    return AsEmbedded(std::move(d), coder);
+  };
+  return options;
+}
+
 size_t ExpectedVertices(const Mesh& base, int level) {
   auto h = SemiRegularHierarchy::Build(static_cast<uint32_t>(base.positions.size()), base.faces, level);
   return h.ok() ? h->NumVertices(level) : 0;
@@ -127,12 +157,35 @@ TEST(GltfExtension, RejectsObjectsBreakingTheRules) {
   with("gap between ranges", [](nlohmann::json& j) { j["levelByteRanges"][1][0] = 2141; });
   with("range not a pair", [](nlohmann::json& j) { j["levelByteRanges"][0] = {0}; });
   with("empty range", [](nlohmann::json& j) { j["levelByteRanges"][3][1] = 0; });
+  with("empty range 1", [](nlohmann::json& j) {
+    j["levelByteRanges"][1][1] = 0;
+    j["levelByteRanges"][2][0] = 2140;
+  });
+  with("empty range 0", [](nlohmann::json& j) {
+    j["levelByteRanges"][0][1] = 0;
+    j["levelByteRanges"][1][0] = 0;
+  });
   with("negative offset", [](nlohmann::json& j) { j["levelByteRanges"][0][0] = -1; });
   with("fractional length", [](nlohmann::json& j) { j["levelByteRanges"][0][1] = 2140.5; });
   with("no POSITION", [](nlohmann::json& j) { j["attributes"].erase("POSITION"); });
   with("extra attribute", [](nlohmann::json& j) { j["attributes"]["TEXCOORD_0"] = 3; });
   for (const auto& [name, j] : cases) {
     EXPECT_FALSE(gltf::ParseExtension(ToValue(j)).ok()) << name;
+  }
+}
+
+TEST(GltfExtension, AcceptsTheCoder1ShapeOfEmptyRanges) {
+  // Ranges 2..J all empty: the shape of a zerotree stream (rule 10), still
+  // rejected for other coders once the stream header is read (see below).
+  nlohmann::json j = SpecExtensionObject();
+  j["levelByteRanges"] = {{0, 2140}, {2140, 4982}, {7122, 0}, {7122, 0}};
+  auto ext = gltf::ParseExtension(ToValue(j));
+  ASSERT_TRUE(ext.ok()) << ext.status().ToString();
+  EXPECT_TRUE(gltf::CheckRangesForCoder(*ext, gltf::kEmbeddedCoderId).ok());
+  for (int coder : {0, 2}) {
+    const Status s = gltf::CheckRangesForCoder(*ext, coder);
+    EXPECT_FALSE(s.ok()) << coder;
+    EXPECT_NE(s.message().find("rule 10"), std::string::npos) << s.message();
   }
 }
 
@@ -248,6 +301,42 @@ TEST(GltfContainer, MaxLevelGivesEachLevelsVertexCountAndReadsOnlyItsBytes) {
     EXPECT_EQ(report.decoded[0].level_decoded, level);
     EXPECT_EQ(report.decoded[0].stream_bytes_read, ext->level_ranges[static_cast<size_t>(level)].end());
   }
+}
+
+TEST(GltfContainer, EmptyLevelRangesLoadForCoder1Only) {
+  tinygltf::Model model = testing::MakeRichScene();
+  gltf::ConvertReport report;
+  ASSERT_TRUE(gltf::CompressPrimitives(&model, EmbeddedFakeCompressor(kLevels), {}, &report).ok());
+  ASSERT_EQ(report.compressed, 2u);
+  auto ext = gltf::ParseExtension(model.meshes[0].primitives[0].extensions.at(kExtensionName));
+  ASSERT_TRUE(ext.ok()) << ext.status().ToString();
+  for (int j = 2; j <= kLevels; ++j) EXPECT_EQ(ext->level_ranges[static_cast<size_t>(j)].length, 0u);
+  auto glb = gltf::WriteGlbToBytes(model);
+  ASSERT_TRUE(glb.ok());
+  const Mesh sphere = testing::MakeIcosphere(1);
+  for (int k = 0; k <= kLevels; ++k) {
+    gltf::LoadReport load;
+    auto loaded = gltf::LoadGltfFromBytes(*glb, "embedded.glb", EmbeddedFakeLoad(gltf::kEmbeddedCoderId, k), &load);
+    ASSERT_TRUE(loaded.ok()) << "K=" << k << ": " << loaded.status().ToString();
+    const tinygltf::Primitive& p = loaded->meshes[0].primitives[0];
+    EXPECT_EQ(loaded->accessors[static_cast<size_t>(p.attributes.at("POSITION"))].count,
+              ExpectedVertices(sphere, k));
+    // Level 0 needs range 0; every finer level needs range 1, the whole payload.
+    EXPECT_EQ(load.decoded[0].stream_bytes_read, ext->level_ranges[k == 0 ? 0 : 1].end());
+  }
+  // The same JSON over a stream whose header names coder 0 breaks rule 10.
+  auto refused = gltf::LoadGltfFromBytes(*glb, "not_embedded.glb", EmbeddedFakeLoad(0));
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.status().message().find("not_embedded.glb: mesh 0 primitive 0: "), std::string::npos)
+      << refused.status().message();
+  EXPECT_NE(refused.status().message().find("rule 10"), std::string::npos) << refused.status().message();
+  // The validator sees a valid asset (it does not know the extension's rules).
+  const std::string path = testing::TempPath("container_embedded.glb");
+  WriteFile(path, *glb);
+  std::string why;
+  const auto v = testing::RunKhronosValidator(path, &why);
+  if (!v) GTEST_SKIP() << why;
+  EXPECT_EQ(v->errors, 0) << v->messages;
 }
 
 TEST(GltfContainer, FallbackFileOpensInALoaderWithoutTheExtension) {
