@@ -370,6 +370,8 @@ class Bench:
         variants = [("eq", "lifted"), ("eq", "unlifted")]
         if self.caps["zerotree"]:
             variants += [("zerotree", "lifted"), ("zerotree", "unlifted")]
+        if self.args.variants:
+            variants = [v for v in variants if "%s-%s" % v in self.args.variants]
         rates = self.args.rates or RATES
         if self.args.quick:
             variants, rates = [("eq", "unlifted")], [1.0, 4.0]
@@ -1058,6 +1060,8 @@ def main():
                     help="timed eqmesh encode runs per point (default: --runs when encode reads .srm)")
     ap.add_argument("--glb-rates", type=float, nargs="*",
                     help="bpv values at which the whole-GLB size is also measured (default 1)")
+    ap.add_argument("--variants", nargs="+",
+                    help="eqmesh variants to run, e.g. eq-unlifted zerotree-unlifted (default: all)")
     ap.add_argument("--rates", type=float, nargs="+",
                     help="eqmesh target bpv (default 0.25 0.5 1 2 3 4)")
     ap.add_argument("--qps", type=int, nargs="+",
