@@ -412,9 +412,12 @@ class Bench:
                     glb_bytes = None
                     if self.caps["glb"] and (self.args.quick or bpv in glb_rates):
                         glb = stream[:-4] + ".glb"
-                        run_timed([self.eq, "encode", canon, glb, "--bpv", bpv, "--transform",
-                                   transform, "--coder", coder])
-                        glb_bytes = os.path.getsize(glb)
+                        try:  # the whole-GLB size is extra: its failure must not lose the point
+                            run_timed([self.eq, "encode", canon, glb, "--bpv", bpv, "--transform",
+                                       transform, "--coder", coder])
+                            glb_bytes = os.path.getsize(glb)
+                        except StepError as e:
+                            log("  GLB size not measured: %s" % e)
                     with open(stream, "rb") as f:
                         gz = gzip9_size(f.read())
                     d = median(dec_s)

@@ -231,6 +231,9 @@ int RunEncode(int argc, char** argv) {
   }
   if (a.base_vertices == 0) return Fail(kName, "--base-vertices must be positive or -1");
   if (EndsWith(a.out_path, ".gltf")) return Fail(kName, a.out_path + ": write .glb (binary glTF) or .eqm");
+  if (EndsWith(a.out_path, ".glb") && EndsWith(a.in_path, ".srm")) {
+    return Fail(kName, a.in_path + ": .glb output needs a mesh or glTF input (a .srm carries no scene)");
+  }
   if (EndsWith(a.out_path, ".glb")) return EncodeToGlb(a);
 
   const bool srm_input = EndsWith(a.in_path, ".srm");
