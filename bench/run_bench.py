@@ -334,8 +334,9 @@ class Bench:
         log("%s: %d referenced vertices, %d triangles, %d compare samples" % (name, nv, nf, samples))
         self.remesh(m, wd, canon, base)
         self.eqmesh(m, wd, canon, base)
-        self.draco(m, wd, canon, base)
-        self.gltfpack(m, wd, canon, base)
+        if not self.args.no_peers:
+            self.draco(m, wd, canon, base)
+            self.gltfpack(m, wd, canon, base)
 
     def remesh(self, m, wd, canon, base):
         log("%s: remesh (ceiling)" % m["name"])
@@ -1063,6 +1064,8 @@ def main():
                     help="timed eqmesh encode runs per point (default: --runs when encode reads .srm)")
     ap.add_argument("--glb-rates", type=float, nargs="*",
                     help="bpv values at which the whole-GLB size is also measured (default 1)")
+    ap.add_argument("--no-peers", action="store_true",
+                    help="run eqmesh only (e.g. to add points to an earlier run, merged with --from-csv)")
     ap.add_argument("--variants", nargs="+",
                     help="eqmesh variants to run, e.g. eq-unlifted zerotree-unlifted (default: all)")
     ap.add_argument("--rates", type=float, nargs="+",
