@@ -1,5 +1,9 @@
 #include "codec_fixtures.h"
 
+#include <gtest/gtest.h>
+
+#include "coding/decoder.h"
+
 #include <cmath>
 #include <fstream>
 #include <iterator>
@@ -89,4 +93,24 @@ double Diagonal(const std::vector<Vec3>& points) {
   }
   return (hi - lo).norm();
 }
+}  // namespace eqmesh::testing
+
+namespace eqmesh::testing {
+
+void ExpectEachMaxLevelGivesItsCounts(const std::vector<uint8_t>& bytes, const SemiRegularMesh& mesh) {
+  const int levels = mesh.hierarchy.levels();
+  const size_t kept_v = mesh.kept_exactly.positions.size(), kept_f = mesh.kept_exactly.faces.size();
+  for (int k = 0; k <= levels + 1; ++k) {
+    DecodeOptions options;
+    options.max_level = k;
+    DecodeInfo info;
+    auto decoded = Decode(bytes.data(), bytes.size(), options, &info);
+    ASSERT_TRUE(decoded.ok()) << decoded.status().ToString();
+    const int level = std::min(k, levels);
+    EXPECT_EQ(info.levels_decoded, level);
+    EXPECT_EQ(decoded->positions.size(), mesh.hierarchy.NumVertices(level) + kept_v);
+    EXPECT_EQ(decoded->faces.size(), mesh.hierarchy.Faces(level).size() + kept_f);
+  }
+}
+
 }  // namespace eqmesh::testing

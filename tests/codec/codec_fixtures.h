@@ -26,6 +26,10 @@ void WriteBytes(const std::string& path, const std::vector<uint8_t>& bytes);
 
 double MaxVertexError(const std::vector<Vec3>& a, const std::vector<Vec3>& b);
 
+// Decodes `bytes` with every max_level from 0 to one past the finest and expects
+// the vertex and face counts of that level of `mesh` (kept_exactly included).
+void ExpectEachMaxLevelGivesItsCounts(const std::vector<uint8_t>& bytes, const SemiRegularMesh& mesh);
+
 }  // namespace eqmesh::testing
 
 namespace eqmesh::testing {

@@ -80,17 +80,7 @@ TEST(RoundTrip, LevelOptionGivesTheLevelVertexCounts) {
   const SemiRegularMesh mesh = testing::MakeBumpySphereWithKept(3);
   auto bytes = Encode(mesh, EncodeOptions{});
   ASSERT_TRUE(bytes.ok()) << bytes.status().ToString();
-  for (int k = 0; k <= 4; ++k) {
-    DecodeOptions options;
-    options.max_level = k;
-    DecodeInfo info;
-    auto decoded = Decode(bytes->data(), bytes->size(), options, &info);
-    ASSERT_TRUE(decoded.ok()) << decoded.status().ToString();
-    const int level = std::min(k, 3);
-    EXPECT_EQ(info.levels_decoded, level);
-    EXPECT_EQ(decoded->positions.size(), mesh.hierarchy.NumVertices(level) + 4u);
-    EXPECT_EQ(decoded->faces.size(), mesh.hierarchy.Faces(level).size() + 4u);
-  }
+  testing::ExpectEachMaxLevelGivesItsCounts(*bytes, mesh);
 }
 
 TEST(RoundTrip, KeptExactlyComponentsSurvive) {

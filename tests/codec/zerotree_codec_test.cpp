@@ -138,19 +138,7 @@ TEST(ZerotreeCodec, LevelOptionGivesTheCoarserLevelsOfTheFullDecode) {
   const SemiRegularMesh mesh = testing::MakeBumpySphereWithKept(3);
   auto bytes = Encode(mesh, ZerotreeOptions(TransformId::kLifted, 8.0));
   ASSERT_TRUE(bytes.ok());
-  auto full = DecodeSemiRegular(bytes->data(), bytes->size());
-  ASSERT_TRUE(full.ok());
-  for (int k = 0; k <= 4; ++k) {
-    DecodeOptions options;
-    options.max_level = k;
-    DecodeInfo info;
-    auto decoded = Decode(bytes->data(), bytes->size(), options, &info);
-    ASSERT_TRUE(decoded.ok()) << decoded.status().ToString();
-    const int level = std::min(k, 3);
-    EXPECT_EQ(info.levels_decoded, level);
-    EXPECT_EQ(decoded->positions.size(), mesh.hierarchy.NumVertices(level) + 4u);
-    EXPECT_EQ(decoded->faces.size(), mesh.hierarchy.Faces(level).size() + 4u);
-  }
+  testing::ExpectEachMaxLevelGivesItsCounts(*bytes, mesh);
 }
 
 TEST(ZerotreeCodec, PsnrTargetIsMetByTheSearchedBudget) {
