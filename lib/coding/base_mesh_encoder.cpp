@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <set>
+#include <string>
 #include <exception>
 #include <limits>
 #include <memory>
@@ -56,9 +57,39 @@ StatusOr<std::vector<uint8_t>> RunDraco(const draco::Mesh& dm, int bits, int met
   return std::vector<uint8_t>(buffer.data(), buffer.data() + buffer.size());
 }
 
+using FaceKey = std::array<uint32_t, 3>;
+
+FaceKey SortedFace(uint32_t a, uint32_t b, uint32_t c) {
+  FaceKey k{a, b, c};
+  std::sort(k.begin(), k.end());
+  return k;
+}
+
+// Input vertices within tolerance of decoded position p, nearest first. Several
+// when input vertices (nearly) share a position, as in scans with duplicated
+// points or meshes whose non-manifold vertices were split: quantization then
+// maps them to one decoded position.
+std::vector<uint32_t> NearbyCandidates(const Mesh& input, const std::vector<uint32_t>& by_x, const Vec3& p,
+                                       double tolerance) {
+  auto it = std::lower_bound(by_x.begin(), by_x.end(), p.x() - tolerance, [&](uint32_t v, double x) {
+    return input.positions[v].x() < x;
+  });
+  std::vector<std::pair<double, uint32_t>> found;
+  for (; it != by_x.end() && input.positions[*it].x() <= p.x() + tolerance; ++it) {
+    const double d = (input.positions[*it] - p).squaredNorm();
+    if (d <= tolerance * tolerance) found.push_back({d, *it});
+  }
+  std::sort(found.begin(), found.end());
+  std::vector<uint32_t> out;
+  for (const auto& [d, v] : found) out.push_back(v);
+  return out;
+}
+
 // Decoded vertex -> input vertex by nearest position: each decoded vertex lies
 // within Draco's quantization step of its input vertex. Candidates come from a
-// window on x (inputs sorted by x), so this is O(n log n + n w).
+// window on x (inputs sorted by x), so this is O(n log n + n w). Vertices that
+// share a position are told apart by connectivity: each takes the candidate that
+// completes the most input faces with the decoded faces around it.
 StatusOr<std::vector<uint32_t>> MatchByPosition(const Mesh& input, const Mesh& decoded,
                                                 double tolerance) {
   const uint32_t n = static_cast<uint32_t>(input.positions.size());
@@ -70,40 +101,91 @@ StatusOr<std::vector<uint32_t>> MatchByPosition(const Mesh& input, const Mesh& d
   std::sort(by_x.begin(), by_x.end(), [&](uint32_t a, uint32_t b) {
     return input.positions[a].x() < input.positions[b].x();
   });
-  std::vector<uint32_t> map(n);
+  constexpr uint32_t kUnset = std::numeric_limits<uint32_t>::max();
+  std::vector<uint32_t> map(n, kUnset);
   std::vector<bool> used(n, false);
+  std::vector<std::vector<uint32_t>> ambiguous(n);
   for (uint32_t i = 0; i < n; ++i) {
-    const Vec3& p = decoded.positions[i];
-    auto it = std::lower_bound(by_x.begin(), by_x.end(), p.x() - tolerance, [&](uint32_t v, double x) {
-      return input.positions[v].x() < x;
-    });
-    double best = tolerance * tolerance;
-    uint32_t best_v = n;
-    for (; it != by_x.end() && input.positions[*it].x() <= p.x() + tolerance; ++it) {
-      const double d = (input.positions[*it] - p).squaredNorm();
-      if (d <= best) {
-        best = d;
-        best_v = *it;
+    std::vector<uint32_t> c = NearbyCandidates(input, by_x, decoded.positions[i], tolerance);
+    if (c.empty()) {
+      return InternalError("Draco base vertex " + std::to_string(i) + " has no input vertex within " +
+                           std::to_string(tolerance));
+    }
+    if (c.size() == 1) {
+      if (used[c[0]]) return InternalError("Draco base vertices are not matchable (two take input " + std::to_string(c[0]) + ")");
+      used[c[0]] = true;
+      map[i] = c[0];
+    } else {
+      ambiguous[i] = std::move(c);
+    }
+  }
+  std::set<FaceKey> input_faces;
+  for (const Face& f : input.faces) input_faces.insert(SortedFace(f[0], f[1], f[2]));
+  std::vector<std::vector<uint32_t>> faces_of(n);
+  for (uint32_t f = 0; f < decoded.faces.size(); ++f) {
+    for (uint32_t v : decoded.faces[f]) faces_of[v].push_back(f);
+  }
+  auto score = [&](uint32_t i, uint32_t candidate) {
+    int s = 0;
+    for (uint32_t f : faces_of[i]) {
+      const Face& t = decoded.faces[f];
+      FaceKey k;
+      bool known = true;
+      for (int c = 0; c < 3 && known; ++c) {
+        k[c] = t[c] == i ? candidate : map[t[c]];
+        known = k[c] != kUnset;
+      }
+      if (known && input_faces.count(SortedFace(k[0], k[1], k[2]))) ++s;
+    }
+    return s;
+  };
+  // Resolve the ambiguous vertices best-scoring first, pass after pass, so each
+  // choice sees as many assigned neighbours as possible.
+  for (bool progress = true; progress;) {
+    progress = false;
+    for (uint32_t i = 0; i < n; ++i) {
+      if (map[i] != kUnset || ambiguous[i].empty()) continue;
+      int best_score = -1;
+      uint32_t best_v = kUnset;
+      for (uint32_t c : ambiguous[i]) {
+        if (used[c]) continue;
+        const int sc = score(i, c);
+        if (sc > best_score) {
+          best_score = sc;
+          best_v = c;
+        }
+      }
+      if (best_v == kUnset) return InternalError("Draco base vertices are not matchable (candidates used up)");
+      if (best_score == 0 && !progress) continue;  // wait for neighbours unless stuck
+      used[best_v] = true;
+      map[i] = best_v;
+      progress = true;
+    }
+    if (!progress) {
+      for (uint32_t i = 0; i < n && !progress; ++i) {
+        if (map[i] != kUnset) continue;
+        for (uint32_t c : ambiguous[i]) {
+          if (used[c]) continue;
+          used[c] = true;
+          map[i] = c;
+          progress = true;
+          break;
+        }
       }
     }
-    if (best_v == n || used[best_v]) return InternalError("Draco base vertices are not matchable");
-    used[best_v] = true;
-    map[i] = best_v;
+  }
+  for (uint32_t v : map) {
+    if (v == kUnset) return InternalError("Draco base vertices are not matchable");
   }
   return map;
 }
 
 // The map must carry every decoded face onto an input face (as vertex sets).
 bool FacesCorrespond(const Mesh& input, const Mesh& decoded, const std::vector<uint32_t>& map) {
-  auto key = [](uint32_t a, uint32_t b, uint32_t c) {
-    std::array<uint32_t, 3> k{a, b, c};
-    std::sort(k.begin(), k.end());
-    return k;
-  };
-  std::set<std::array<uint32_t, 3>> faces;
-  for (const Face& f : input.faces) faces.insert(key(f[0], f[1], f[2]));
+  std::set<FaceKey> faces;
+  for (const Face& f : input.faces) faces.insert(SortedFace(f[0], f[1], f[2]));
   for (const Face& f : decoded.faces) {
-    if (faces.erase(key(map[f[0]], map[f[1]], map[f[2]])) != 1) return false;
+    if (faces.erase(SortedFace(map[f[0]], map[f[1]], map[f[2]])) != 1) return false;
   }
   return faces.empty();
 }
@@ -174,11 +256,20 @@ StatusOr<DracoMeshEncoding> EncodeMeshWithDraco(const Mesh& mesh, int bits, bool
 }
 
 StatusOr<std::vector<DracoMeshEncoding>> EncodeBaseCandidates(const Mesh& base) {
+  // A coarse depth can merge base vertices that lie closer than its step (scans
+  // with near-duplicate points): such a depth cannot be matched back to the
+  // input and is skipped; the finer ones always can.
   std::vector<DracoMeshEncoding> candidates;
+  Status last = Status::Ok();
   for (int bits = bitstream::kBaseMinBits; bits <= bitstream::kBaseMaxBits; ++bits) {
-    EQMESH_ASSIGN_OR_RETURN(DracoMeshEncoding enc, EncodeMeshWithDraco(base, bits));
-    candidates.push_back(std::move(enc));
+    StatusOr<DracoMeshEncoding> enc = EncodeMeshWithDraco(base, bits);
+    if (enc.ok()) {
+      candidates.push_back(std::move(*enc));
+    } else {
+      last = enc.status();
+    }
   }
+  if (candidates.empty()) return last;
   return candidates;
 }
 

@@ -191,3 +191,43 @@ TEST(Golden, Version10StreamStillDecodes) {
 
 }  // namespace
 }  // namespace eqmesh
+
+namespace eqmesh {
+namespace {
+
+// Two octahedra touching at one point: two base vertices share a position (scans
+// with duplicated points, split non-manifold vertices). Draco quantizes them to
+// one decoded position; the encoder must still match its base back by connectivity.
+SemiRegularMesh TwoOctahedraSharingAPoint() {
+  Mesh base;
+  const Vec3 axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  const Face oct[8] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  for (int copy = 0; copy < 2; ++copy) {
+    const Vec3 centre(2.0 * copy, 0, 0);  // vertex +x of the first = vertex -x of the second
+    const uint32_t first = static_cast<uint32_t>(base.positions.size());
+    for (const Vec3& a : axes) base.positions.push_back(centre + a);
+    for (const Face& f : oct) base.faces.push_back({first + f[0], first + f[1], first + f[2]});
+  }
+  SemiRegularMesh mesh;
+  mesh.hierarchy = *SemiRegularHierarchy::Build(12, base.faces, 1);
+  mesh.positions = base.positions;
+  for (const Edge& e : mesh.hierarchy.OddEdges(0)) {
+    const Vec3 mid = 0.5 * (base.positions[e[0]] + base.positions[e[1]]);
+    const Vec3 centre(mid.x() > 1.0 ? 2.0 : 0.0, 0, 0);
+    mesh.positions.push_back(centre + 1.1 * (mid - centre).normalized());
+  }
+  return mesh;
+}
+
+TEST(RoundTrip, BaseVerticesSharingAPositionAreMatchedByConnectivity) {
+  const SemiRegularMesh mesh = TwoOctahedraSharingAPoint();
+  auto bytes = Encode(mesh, EncodeOptions{});
+  ASSERT_TRUE(bytes.ok()) << bytes.status().ToString();
+  auto decoded = Decode(bytes->data(), bytes->size());
+  ASSERT_TRUE(decoded.ok()) << decoded.status().ToString();
+  EXPECT_EQ(decoded->positions.size(), mesh.positions.size());
+  EXPECT_LT(testing::MaxNearestDistance(mesh.positions, decoded->positions), 0.05);
+}
+
+}  // namespace
+}  // namespace eqmesh
