@@ -17,6 +17,7 @@
 #include "mesh/semi_regular_io.h"
 #include "remesh/remesh.h"
 #include "tools/command.h"
+#include "tools/terminal_progress.h"
 
 namespace eqmesh::cli {
 namespace {
@@ -161,8 +162,10 @@ StatusOr<Source> RemeshInput(const EncodeArgs& a) {
   options.levels = a.levels;
   options.base_vertices = a.base_vertices;
   options.repair = a.repair;
+  options.progress = TerminalProgress();
   const auto start = std::chrono::steady_clock::now();
   auto remeshed = Remesh(mesh, options, &src.remesh);
+  ClearTerminalProgress(options.progress);
   if (!remeshed.ok()) return remeshed.status().WithContext(a.in_path);
   src.remesh_seconds = SecondsSince(start);
   src.remeshed = std::move(*remeshed);
@@ -246,8 +249,10 @@ int RunEncode(int argc, char** argv) {
   }
   EncodeReport report;
   LevelCountReport search;
+  options.progress = TerminalProgress();
   const auto encode_start = std::chrono::steady_clock::now();
   auto bytes = EncodeChoosingLevels(source->remeshed, options, &report, &search);
+  ClearTerminalProgress(options.progress);
   if (!bytes.ok()) return Fail(kName, a.in_path + ": " + bytes.status().message());
   const double encode_seconds = SecondsSince(encode_start);
   const Status written = WriteBytesToFile(a.out_path, *bytes);

@@ -3,7 +3,6 @@
 #include <chrono>
 #include <cstdio>
 #include <string>
-#include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -16,23 +15,12 @@
 #include "metrics/surface_distance.h"
 #include "remesh/quality_checks.h"
 #include "tools/command.h"
+#include "tools/terminal_progress.h"
 
 namespace {
 
 constexpr const char* kName = "remesh";
 
-// Draws "stage  42%" on one terminal line; silent when stderr is not a TTY.
-eqmesh::ProgressFn TerminalProgress() {
-  if (!isatty(fileno(stderr))) return nullptr;
-  return [last = std::string(), last_pct = -1](const std::string& stage, double fraction) mutable {
-    const int pct = static_cast<int>(fraction * 100.0);
-    if (stage == last && pct == last_pct) return;
-    last = stage;
-    last_pct = pct;
-    std::fprintf(stderr, "\r\033[K%s %3d%%", stage.c_str(), pct);
-    std::fflush(stderr);
-  };
-}
 
 int RunRemesh(int argc, char** argv) {
   CLI::App app{"Remesh a manifold triangle mesh into a semi-regular normal mesh", argv[0]};
@@ -64,10 +52,10 @@ int RunRemesh(int argc, char** argv) {
   options.levels = levels;
   options.base_vertices = base_vertices;
   options.repair = repair;
-  options.progress = TerminalProgress();
+  options.progress = eqmesh::cli::TerminalProgress();
   eqmesh::RemeshReport report;
   auto remeshed = eqmesh::Remesh(*mesh, options, &report);
-  if (options.progress) std::fprintf(stderr, "\r\033[K");
+  eqmesh::cli::ClearTerminalProgress(options.progress);
   if (!remeshed.ok()) return eqmesh::cli::Fail(kName, in_path + ": " + remeshed.status().message());
   const eqmesh::Mesh finest = eqmesh::ExtractLevel(*remeshed, remeshed->hierarchy.levels());
   const bool srm = out_path.size() >= 4 && out_path.compare(out_path.size() - 4, 4, ".srm") == 0;
