@@ -35,8 +35,7 @@ int RunConvert(int argc, char** argv) {
     return app.exit(e);
   }
   ReadReport report;
-  const bool srm = in.size() >= 4 && in.compare(in.size() - 4, 4, ".srm") == 0;
-  StatusOr<Mesh> mesh = srm ? ReadFinestLevel(in) : ReadMesh(in, &report);
+  StatusOr<Mesh> mesh = EndsWith(in, ".srm") ? ReadFinestLevel(in) : ReadMesh(in, &report);
   if (!mesh.ok()) return Fail("convert", mesh.status().message());
   WriteOptions options;
   options.ply_double_positions = ply_double;

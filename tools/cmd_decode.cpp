@@ -20,10 +20,6 @@ constexpr const char* kName = "decode";
 // Streams are small; refuse anything that could not be one before reading it all.
 constexpr uint64_t kMaxStreamBytes = uint64_t{1} << 31;
 
-bool EndsWith(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
 // Compressed glTF in: decode every EXT_normal_mesh_compression primitive. A .glb
 // output keeps the whole scene as plain glTF; OBJ/PLY/OFF get the flattened geometry.
 int DecodeGltf(const std::string& in_path, const std::string& out_path, int level, bool json) {

@@ -58,9 +58,9 @@ int RunRemesh(int argc, char** argv) {
   eqmesh::cli::ClearTerminalProgress(options.progress);
   if (!remeshed.ok()) return eqmesh::cli::Fail(kName, in_path + ": " + remeshed.status().message());
   const eqmesh::Mesh finest = eqmesh::ExtractLevel(*remeshed, remeshed->hierarchy.levels());
-  const bool srm = out_path.size() >= 4 && out_path.compare(out_path.size() - 4, 4, ".srm") == 0;
-  const eqmesh::Status written =
-      srm ? eqmesh::WriteSemiRegular(*remeshed, out_path) : eqmesh::WriteMesh(finest, out_path);
+  const eqmesh::Status written = eqmesh::cli::EndsWith(out_path, ".srm")
+                                      ? eqmesh::WriteSemiRegular(*remeshed, out_path)
+                                      : eqmesh::WriteMesh(finest, out_path);
   if (!written.ok()) return eqmesh::cli::Fail(kName, written.message());
   if (!json) {
     std::printf("%s: %zu input vertices -> base %zu, %d levels, %zu vertices, normal %.2f%%, %.2f s\n",

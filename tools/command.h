@@ -24,6 +24,12 @@ struct Registrar {
 // Prints "eqmesh <command>: error: <message>" on stderr and returns exit code 1.
 int Fail(const std::string& command, const std::string& message);
 
+// Whether a path ends with an extension such as ".srm" (exact case; commands pick
+// their output format and their special inputs by name).
+inline bool EndsWith(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
 }  // namespace eqmesh::cli
 
 #define EQMESH_CLI_CONCAT_INNER(a, b) a##b
