@@ -14,6 +14,12 @@ PACKAGES=(
 if [[ "${EQMESH_SETUP_EXTRAS:-0}" == "1" ]]; then
   PACKAGES+=(nodejs npm gnuplot-nox)
 fi
+# The web loader's wasm build and real-browser test (issue 8, scripts/test-web.sh).
+# A flag of its own: the extras' Debian npm cannot join a node from elsewhere
+# (nodesource), while these packages can.
+if [[ "${EQMESH_SETUP_EXTRAS:-0}" == "1" || "${EQMESH_SETUP_WEB:-0}" == "1" ]]; then
+  PACKAGES+=(emscripten chromium chromium-driver)
+fi
 
 missing=()
 for p in "${PACKAGES[@]}"; do

@@ -34,6 +34,7 @@ int RunConvert(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
+  if (IsSameFile(in, out)) return Fail("convert", out + ": is the input file; write the output elsewhere");
   ReadReport report;
   StatusOr<Mesh> mesh = EndsWith(in, ".srm") ? ReadFinestLevel(in) : ReadMesh(in, &report);
   if (!mesh.ok()) return Fail("convert", mesh.status().message());

@@ -64,6 +64,7 @@ int RunDecode(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
+  if (IsSameFile(in_path, out_path)) return Fail(kName, out_path + ": is the input file; write the output elsewhere");
   if (EndsWith(in_path, ".glb") || EndsWith(in_path, ".gltf")) return DecodeGltf(in_path, out_path, level, json);
   auto bytes = ReadFileBytes(in_path, kMaxStreamBytes);
   if (!bytes.ok()) return Fail(kName, bytes.status().message());

@@ -16,6 +16,7 @@
 #include "mesh/mesh_io.h"
 #include "mesh/semi_regular_io.h"
 #include "remesh/remesh.h"
+#include "core/thread_count.h"
 #include "tools/command.h"
 #include "tools/terminal_progress.h"
 
@@ -30,6 +31,8 @@ struct EncodeArgs {
   std::string transform = "unlifted", coder = "eq";
   std::string original_path;
   int levels = -1, base_vertices = -1;
+  int threads = 0;
+  bool strict = false;
   bool repair = false, measure = false, json = false, fallback = false;
 };
 
@@ -44,13 +47,6 @@ struct Source {
 
 double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-Status WriteBytesToFile(const std::string& path, const std::vector<uint8_t>& bytes) {
-  std::ofstream out(path, std::ios::binary);
-  out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-  if (!out) return IoError(path + ": cannot write");
-  return Status::Ok();
 }
 
 EncodeOptions ToEncodeOptions(const EncodeArgs& a) {
@@ -123,13 +119,17 @@ int EncodeToGlb(const EncodeArgs& a) {
   options.remesh.base_vertices = a.base_vertices;
   options.remesh.repair = a.repair;
   options.fallback = a.fallback;
+  options.strict = a.strict;
   const auto start = std::chrono::steady_clock::now();
   auto report = gltf::ConvertToCompressedGltf(a.in_path, a.out_path, options);
-  if (!report.ok()) return Fail(kName, report.status().message());
+  if (!report.ok()) {
+    const std::string& m = report.status().message();
+    return Fail(kName, m.find(a.in_path) == std::string::npos ? a.in_path + ": " + m : m);
+  }
   for (const auto& p : report->primitives) {
     if (!p.compressed) {
-      std::fprintf(stderr, "eqmesh encode: mesh %d primitive %d left unchanged: %s\n", p.mesh, p.primitive,
-                   p.reason.c_str());
+      std::fprintf(stderr, "eqmesh encode: %s: mesh %d primitive %d left unchanged: %s\n", a.in_path.c_str(), p.mesh,
+                   p.primitive, p.reason.c_str());
     }
   }
   if (a.json) {
@@ -223,11 +223,18 @@ int RunEncode(int argc, char** argv) {
   app.add_flag("--fallback", a.fallback,
                ".glb output: also store uncompressed geometry for loaders without the extension");
   app.add_flag("--json", a.json, "print one JSON object with the report");
+  app.add_flag("--strict", a.strict,
+               ".glb output: fail when any triangle primitive cannot be compressed (default: keep it "
+               "unchanged and warn; the run fails anyway when none could be compressed)");
+  app.add_option("--threads", a.threads, "worker threads, 0 = all cores (the output does not depend on it)")
+      ->check(CLI::Range(0, 256));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
+  SetWorkerThreadLimit(a.threads);
+  if (IsSameFile(a.in_path, a.out_path)) return Fail(kName, a.out_path + ": is the input file; write the output elsewhere");
   if (a.base_vertices == 0) return Fail(kName, "--base-vertices must be positive or -1");
   if (EndsWith(a.out_path, ".gltf")) return Fail(kName, a.out_path + ": write .glb (binary glTF) or .eqm");
   if (EndsWith(a.out_path, ".glb") && EndsWith(a.in_path, ".srm")) {
@@ -251,7 +258,7 @@ int RunEncode(int argc, char** argv) {
   ClearTerminalProgress(options.progress);
   if (!bytes.ok()) return Fail(kName, a.in_path + ": " + bytes.status().message());
   const double encode_seconds = SecondsSince(encode_start);
-  const Status written = WriteBytesToFile(a.out_path, *bytes);
+  const Status written = WriteFileAtomically(a.out_path, *bytes);
   if (!written.ok()) return Fail(kName, written.message());
   const RemeshReport& remesh_report = source->remesh;
   const double remesh_seconds = source->remesh_seconds;

@@ -40,6 +40,7 @@ int RunPerturb(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
+  if (IsSameFile(in, out)) return Fail("perturb", out + ": is the input file; write the output elsewhere");
   StatusOr<Mesh> mesh = ReadMesh(in);
   if (!mesh.ok()) return Fail("perturb", NameFile(mesh.status(), in));
   const double diagonal = BoundingBoxDiagonal(*mesh);

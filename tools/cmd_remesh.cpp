@@ -14,6 +14,7 @@
 #include "mesh/diagnose.h"
 #include "metrics/surface_distance.h"
 #include "remesh/quality_checks.h"
+#include "core/thread_count.h"
 #include "tools/command.h"
 #include "tools/terminal_progress.h"
 
@@ -27,6 +28,7 @@ int RunRemesh(int argc, char** argv) {
   std::string in_path, out_path;
   int levels = -1, base_vertices = -1;
   bool repair = false, json = false;
+  int threads = 0;
   app.add_option("IN", in_path, "input mesh (.obj .ply .off .gltf .glb, optionally .gz)")->required();
   app.add_option("OUT", out_path,
                  "output: finest level as a mesh (.obj .ply .off .glb), or the whole hierarchy as a "
@@ -38,11 +40,15 @@ int RunRemesh(int argc, char** argv) {
       ->check(CLI::Range(-1, 1 << 30));
   app.add_flag("--repair", repair, "repair non-manifold / misoriented input instead of refusing it");
   app.add_flag("--json", json, "print one JSON object with the remesh report");
+  app.add_option("--threads", threads, "worker threads, 0 = all cores (the output does not depend on it)")
+      ->check(CLI::Range(0, 256));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
+  eqmesh::SetWorkerThreadLimit(threads);
+  if (eqmesh::IsSameFile(in_path, out_path)) return eqmesh::cli::Fail(kName, out_path + ": is the input file; write the output elsewhere");
   if (base_vertices == 0) return eqmesh::cli::Fail(kName, "--base-vertices must be positive or -1");
 
   eqmesh::ReadReport read_report;

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "mesh/atomic_file.h"
+
 namespace eqmesh::cli {
 
 struct Command {

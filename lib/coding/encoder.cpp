@@ -70,6 +70,11 @@ StatusOr<const Renumbered*> RenumberCached(const SemiRegularMesh& mesh,
 Status Validate(const SemiRegularMesh& mesh, const EncodeOptions& options) {
   const SemiRegularHierarchy& h = mesh.hierarchy;
   if (h.levels() < 0 || h.NumVertices(0) == 0 || h.BaseFaces().empty()) {
+    if (!mesh.kept_exactly.positions.empty()) {
+      return InvalidArgument("nothing was remeshed: every component is too small (" +
+                             std::to_string(mesh.kept_exactly.positions.size()) +
+                             " vertices in all, kept exactly); a stream needs one remeshed component");
+    }
     return InvalidArgument("semi-regular mesh has no base faces");
   }
   if (h.levels() > bitstream::kMaxLevels) {

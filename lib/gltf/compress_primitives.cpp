@@ -111,6 +111,7 @@ PrimitiveOutcome PrimitiveCompressor::Compress(size_t mesh_index, size_t primiti
   auto mesh = ReadTrianglePrimitive(*model_, p);
   if (!mesh.ok()) {
     out.reason = mesh.status().ToString();
+    out.failure = mesh.status();
     return out;
   }
   out.input_vertices = CountReferencedVertices(*mesh);
@@ -120,6 +121,7 @@ PrimitiveOutcome PrimitiveCompressor::Compress(size_t mesh_index, size_t primiti
   Status status = geometry.ok() ? Replace(&p, *geometry) : geometry.status();
   if (!status.ok()) {
     out.reason = status.ToString();
+    out.failure = status;
     return out;
   }
   out.compressed = true;

@@ -43,6 +43,10 @@ struct PrimitiveOutcome {
   int primitive = 0;
   bool compressed = false;
   std::string reason;  // why it was left unchanged (empty when compressed)
+  // Set when the primitive was a candidate (triangles, positions) whose
+  // geometry could not be read or compressed, as opposed to one that is not
+  // ours to compress (points, lines, another compression extension).
+  Status failure;
   size_t input_vertices = 0, input_triangles = 0;
   size_t output_vertices = 0, output_triangles = 0;
   size_t stream_bytes = 0;

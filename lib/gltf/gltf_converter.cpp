@@ -52,6 +52,14 @@ StatusOr<uint64_t> WriteOutput(const tinygltf::Model& model, const std::string& 
   return static_cast<uint64_t>(size);
 }
 
+// See ConvertOptions::strict.
+Status CheckFailures(const ConvertReport& report, const ConvertOptions& options) {
+  for (const PrimitiveOutcome& p : report.primitives) {
+    if (!p.failure.ok() && (options.strict || report.compressed == 0)) return p.failure;
+  }
+  return Status::Ok();
+}
+
 }  // namespace
 
 GeometryCompressor MakeEqmeshCompressor(const ConvertOptions& options) {
@@ -72,6 +80,7 @@ StatusOr<ConvertReport> ConvertModel(tinygltf::Model* model, const ConvertOption
 StatusOr<ConvertReport> ConvertToCompressedGltf(tinygltf::Model model, const std::string& output_path,
                                                 const ConvertOptions& options) {
   EQMESH_ASSIGN_OR_RETURN(ConvertReport report, ConvertModel(&model, options));
+  EQMESH_RETURN_IF_ERROR(CheckFailures(report, options));
   EQMESH_ASSIGN_OR_RETURN(report.output_bytes, WriteOutput(model, output_path));
   return report;
 }
@@ -87,6 +96,7 @@ StatusOr<ConvertReport> ConvertToCompressedGltf(const std::string& input_path, c
   }
   auto report = ConvertModel(&model, options);
   if (!report.ok()) return report.status().WithContext(input_path);
+  EQMESH_RETURN_IF_ERROR(CheckFailures(*report, options).WithContext(input_path));
   std::error_code ec;
   report->input_bytes = static_cast<uint64_t>(std::filesystem::file_size(input_path, ec));
   EQMESH_ASSIGN_OR_RETURN(report->output_bytes, WriteOutput(model, output_path));

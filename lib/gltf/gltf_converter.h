@@ -24,6 +24,11 @@ struct ConvertOptions {
   // See ContainerOptions.
   bool fallback = false;
   bool drop_other_attributes = false;
+  // A triangle primitive that cannot be compressed (broken geometry) is left
+  // unchanged with its reason in the report, unless `strict`; the conversion
+  // fails, writing nothing, when `strict` or when no primitive at all could be
+  // compressed (the output would only be a re-packed copy of the input).
+  bool strict = false;
 };
 
 // The remesher + encoder as a GeometryCompressor (also measures the decoded PSNR

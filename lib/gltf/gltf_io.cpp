@@ -1,11 +1,11 @@
 #include "gltf/gltf_io.h"
 
 #include <cstring>
-#include <fstream>
 #include <sstream>
 
 #include "gltf/buffer_layout.h"
 #include "gltf/placeholder_indices.h"
+#include "mesh/atomic_file.h"
 #include "mesh/file_bytes.h"
 
 namespace eqmesh::gltf {
@@ -119,11 +119,7 @@ StatusOr<std::vector<uint8_t>> WriteGlbToBytes(const tinygltf::Model& model) {
 Status WriteGlb(const tinygltf::Model& model, const std::string& path) {
   auto bytes = WriteGlbToBytes(model);
   if (!bytes.ok()) return bytes.status().WithContext(path);
-  std::ofstream file(path, std::ios::binary);
-  if (!file) return IoError(path + ": cannot open for writing");
-  file.write(reinterpret_cast<const char*>(bytes->data()), static_cast<std::streamsize>(bytes->size()));
-  if (!file) return IoError(path + ": write failed");
-  return Status::Ok();
+  return WriteFileAtomically(path, *bytes);
 }
 
 }  // namespace eqmesh::gltf

@@ -6,6 +6,8 @@
 #include <fstream>
 #include <iterator>
 
+#include "mesh/atomic_file.h"
+
 namespace eqmesh {
 namespace {
 
@@ -131,11 +133,7 @@ Status WriteSemiRegular(const SemiRegularMesh& mesh, const std::string& path) {
     for (VertexKind k : mesh.kinds) w.Put(static_cast<uint8_t>(k));
   }
   w.PutMesh(mesh.kept_exactly.positions, mesh.kept_exactly.faces);
-  std::ofstream out(path, std::ios::binary);
-  if (!out) return IoError(path + ": cannot open for writing");
-  out.write(w.bytes.data(), static_cast<std::streamsize>(w.bytes.size()));
-  if (!out) return IoError(path + ": write failed");
-  return Status::Ok();
+  return WriteFileAtomically(path, reinterpret_cast<const uint8_t*>(w.bytes.data()), w.bytes.size());
 }
 
 StatusOr<SemiRegularMesh> ReadSemiRegular(const std::string& path) {

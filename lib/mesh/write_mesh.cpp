@@ -12,6 +12,7 @@
 #include <limits>
 #include <memory>
 
+#include "mesh/atomic_file.h"
 #include "mesh/mesh_io.h"
 
 namespace eqmesh {
@@ -212,10 +213,6 @@ std::string ExtensionOf(const std::string& path) {
   return ext;
 }
 
-struct FileCloser {
-  void operator()(FILE* f) const { std::fclose(f); }
-};
-
 }  // namespace
 
 StatusOr<std::vector<uint8_t>> WriteMeshToBytes(const Mesh& mesh, const std::string& format,
@@ -236,13 +233,7 @@ StatusOr<std::vector<uint8_t>> WriteMeshToBytes(const Mesh& mesh, const std::str
 Status WriteMesh(const Mesh& mesh, const std::string& path, const WriteOptions& options) {
   const StatusOr<Bytes> bytes = WriteMeshToBytes(mesh, ExtensionOf(path), options);
   if (!bytes.ok()) return bytes.status().WithContext(path);
-  std::unique_ptr<FILE, FileCloser> file(std::fopen(path.c_str(), "wb"));
-  if (!file) return IoError(path + ": cannot open for writing (" + std::strerror(errno) + ")");
-  if (!bytes->empty() && std::fwrite(bytes->data(), 1, bytes->size(), file.get()) != bytes->size()) {
-    return IoError(path + ": write failed (" + std::strerror(errno) + ")");
-  }
-  if (std::fclose(file.release()) != 0) return IoError(path + ": write failed (" + std::strerror(errno) + ")");
-  return Status::Ok();
+  return WriteFileAtomically(path, *bytes);
 }
 
 }  // namespace eqmesh

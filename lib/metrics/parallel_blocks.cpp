@@ -1,6 +1,8 @@
 // ForEachBlock: a dynamic (atomic counter) block schedule; see parallel_blocks.h.
 #include "metrics/parallel_blocks.h"
 
+#include "core/thread_count.h"
+
 #include <algorithm>
 #include <atomic>
 #include <system_error>
@@ -10,9 +12,7 @@
 namespace eqmesh {
 
 int ResolveThreadCount(int threads) {
-  if (threads > 0) return threads;
-  const unsigned hw = std::thread::hardware_concurrency();
-  return hw > 0 ? static_cast<int>(std::min(hw, 256u)) : 1;
+  return threads > 0 ? threads : WorkerThreadLimit();
 }
 
 void ForEachBlock(uint64_t num_blocks, int threads, const std::function<void(uint64_t)>& fn) {

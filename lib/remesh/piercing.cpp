@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <Eigen/Geometry>
 #include <cmath>
-#include <mutex>
 
 #include "remesh/level_domain.h"
 #include "remesh/parallel_for.h"
@@ -429,9 +428,7 @@ void LevelRefiner::UpdateParams(const std::vector<Vec3>& fine_pos, std::vector<P
 // Remesh error seen from the input vertices (cheap stand-in for Metro).
 double LevelRefiner::RmsError(const std::vector<Vec3>& fine_pos, const std::vector<ParamPoint>& next) const {
   const std::vector<Face>& fine = h_.Faces(j_ + 1);
-  std::mutex lock;
-  double sum = 0.0;
-  ParallelFor(next.size(), [&](size_t begin, size_t end, size_t) {
+  const double sum = ParallelSum(next.size(), 0.0, [&](size_t begin, size_t end) {
     double local = 0.0;
     for (size_t x = begin; x < end; ++x) {
       const Face& t = fine[next[x].face];
@@ -439,8 +436,7 @@ double LevelRefiner::RmsError(const std::vector<Vec3>& fine_pos, const std::vect
       const Vec3 q = ClosestPointOnTriangle(s_.mesh->positions[x], fine_pos[t[0]], fine_pos[t[1]], fine_pos[t[2]], &b);
       local += (q - s_.mesh->positions[x]).squaredNorm();
     }
-    std::lock_guard<std::mutex> g(lock);
-    sum += local;
+    return local;
   });
   return next.empty() ? 0.0 : std::sqrt(sum / static_cast<double>(next.size()));
 }

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <array>
 #include <cstdio>
-#include <mutex>
 #include <string>
 #include <chrono>
 #include <cmath>
@@ -203,22 +202,18 @@ struct Refinement {
 // direction; the estimate is the worse of the two, as in Metro.
 double SymmetricEstimateDb(const Refinement& r, const TriangleBvh& input, double diagonal) {
   const std::vector<Face>& faces = r.hierarchy.Faces(r.levels);
-  std::mutex lock;
-  double sum = 0.0, area = 0.0;
-  ParallelFor(faces.size(), [&](size_t begin, size_t end, size_t) {
-    double s = 0.0, a = 0.0;
+  const Eigen::Vector2d sum_area = ParallelSum(faces.size(), Eigen::Vector2d(0.0, 0.0), [&](size_t begin, size_t end) {
+    Eigen::Vector2d local(0.0, 0.0);
     for (size_t f = begin; f < end; ++f) {
       const Vec3& p0 = r.positions[faces[f][0]];
       const Vec3& p1 = r.positions[faces[f][1]];
       const Vec3& p2 = r.positions[faces[f][2]];
       const double w = (p1 - p0).cross(p2 - p0).norm();
-      s += w * input.ClosestPoint((p0 + p1 + p2) / 3.0).squared_distance;
-      a += w;
+      local += Eigen::Vector2d(w * input.ClosestPoint((p0 + p1 + p2) / 3.0).squared_distance, w);
     }
-    std::lock_guard<std::mutex> g(lock);
-    sum += s;
-    area += a;
+    return local;
   });
+  const double sum = sum_area[0], area = sum_area[1];
   const double rms_ba = area > 0.0 ? std::sqrt(sum / area) : 0.0;
   return std::min(r.FinalPsnr(), EstimatedPsnrDb(diagonal, rms_ba));
 }
