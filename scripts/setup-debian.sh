@@ -9,6 +9,7 @@ PACKAGES=(
   libtinygltf-dev libdraco-dev draco libeigen3-dev
   libgtest-dev googletest libcli11-dev nlohmann-json3-dev zlib1g-dev libstb-dev
   gltfpack gzip python3 time gnuplot-nox
+  clang libclang-rt-14-dev
 )
 # Optional extras for the validator and the benchmark plots (issue 5/6 tooling).
 if [[ "${EQMESH_SETUP_EXTRAS:-0}" == "1" ]]; then

@@ -1,9 +1,16 @@
 #!/usr/bin/env bash
-# The whole test suite: installs what is missing, builds (RelWithDebInfo, warnings
-# on), runs every GoogleTest case through ctest. scripts/test-sanitizers.sh runs the
-# same suite under AddressSanitizer + UndefinedBehaviorSanitizer.
+# The whole test suite (what .ci/run calls): installs what is missing, then
+#   1. builds (gcc, RelWithDebInfo, warnings on) and runs every GoogleTest case;
+#   2. the web loader in headless Chromium (scripts/test-web.sh);
+#   3. the same GoogleTest suite built with clang -O1 under AddressSanitizer +
+#      UndefinedBehaviorSanitizer (scripts/test-sanitizers.sh); the pinned
+#      determinism hashes are thereby checked on gcc -O2 and clang -O1;
+#   4. a short smoke run of every libFuzzer target (scripts/fuzz.sh smoke).
+# EQMESH_TEST_STAGES="build web sanitizers fuzz" picks stages (default: all).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+STAGES="${EQMESH_TEST_STAGES:-build web sanitizers fuzz}"
+has_stage() { [[ " $STAGES " == *" $1 "* ]]; }
 bash scripts/setup-debian.sh
 # The Khronos glTF-Validator (npm, pinned in tests/gltf/validator/package-lock.json)
 # checks every GLB the glTF tests write; those tests skip when it is absent.
@@ -14,11 +21,26 @@ if command -v npm >/dev/null 2>&1 && [[ ! -d tests/gltf/validator/node_modules ]
   (cd tests/gltf/validator && npm ci --no-audit --no-fund --loglevel=error) ||
     echo "test: npm ci failed; validator tests will skip"
 fi
-BUILD_DIR="${BUILD_DIR:-build-test}"
-BUILD_DIR="$BUILD_DIR" BUILD_TYPE="${BUILD_TYPE:-RelWithDebInfo}" \
-  bash scripts/build.sh -DEQMESH_BUILD_TESTS=ON "$@"
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1:strict_string_checks=1}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
-ctest --test-dir "$BUILD_DIR" --output-on-failure -j "$(nproc)" --timeout 900
-# The web loader in headless Chromium (skips, saying so, without emcc or chromium).
-BUILD_DIR="$BUILD_DIR" bash scripts/test-web.sh
+BUILD_DIR="${BUILD_DIR:-build-test}"
+stage() { echo "== test: $1 ($(date +%T))"; }
+if has_stage build; then
+  stage "build + GoogleTest ($BUILD_DIR)"
+  BUILD_DIR="$BUILD_DIR" BUILD_TYPE="${BUILD_TYPE:-RelWithDebInfo}" \
+    bash scripts/build.sh -DEQMESH_BUILD_TESTS=ON "$@"
+  ctest --test-dir "$BUILD_DIR" --output-on-failure -j "$(nproc)" --timeout 900
+fi
+if has_stage web; then
+  stage "web loader in headless Chromium"
+  BUILD_DIR="$BUILD_DIR" bash scripts/test-web.sh
+fi
+if has_stage sanitizers; then
+  stage "GoogleTest under ASan + UBSan (clang -O1)"
+  bash scripts/test-sanitizers.sh
+fi
+if has_stage fuzz; then
+  stage "libFuzzer smoke run"
+  bash scripts/fuzz.sh smoke
+fi
+stage "all passed"

@@ -1,6 +1,6 @@
 // Same input and options, same bytes: across repeated runs, thread counts,
 // compilers and optimisation levels. CI runs this file in the gcc -O2 build and
-// in the clang -O0 sanitizer build against the same pinned hashes;
+// in the clang -O1 sanitizer build against the same pinned hashes;
 // scripts/determinism.sh compares whole-pipeline outputs across the four
 // gcc/clang x -O0/-O2 builds.
 //
