@@ -76,11 +76,15 @@ StatusOr<Mesh> DecodeKept(const uint8_t* data, const StreamInfo& s) {
   return DecodeDracoMesh(data + s.kept_offset, s.kept_size, limits, "eqm kept-exactly chunk");
 }
 
-// Runs the refinements 0 .. levels-1 on top of the decoded base.
+// Runs the refinements 0 .. levels-1 on top of the decoded base. Level j+1's
+// connectivity is built only once level j has decoded, and its coefficients only
+// once chunk j has passed DecodeLevelCoefficients' size checks.
 Status DecodeLevels(const uint8_t* data, const StreamInfo& s, const StreamHeader& h, int levels,
                     SemiRegularMesh* mesh) {
   const LevelCodingParams params{h.coder, h.lambda_code, h.lambda(), h.tangential_factor(), h.quantum};
   for (int j = 0; j < levels; ++j) {
+    const Status refined = mesh->hierarchy.Refine(bitstream::kMaxFinestFaces);
+    if (!refined.ok()) return refined.WithContext("eqm base mesh chunk");
     const LevelSynthesis step(mesh->hierarchy, j, h.transform);
     const std::vector<LocalFrame> frames = step.Frames(mesh->positions);
     EQMESH_ASSIGN_OR_RETURN(std::vector<Vec3> local,
@@ -113,9 +117,16 @@ StatusOr<SemiRegularMesh> DecodeSemiRegular(const uint8_t* data, size_t size,
   EQMESH_ASSIGN_OR_RETURN(Mesh base, DecodeBase(data, s));
   SemiRegularMesh mesh;
   EQMESH_ASSIGN_OR_RETURN(mesh.kept_exactly, DecodeKept(data, s));
+  // Refused whole rather than after decoding the levels that fit.
+  if (SemiRegularHierarchy::FinestFaceCount(base.faces.size(), levels) > bitstream::kMaxFinestFaces) {
+    return ResourceLimit("eqm base mesh chunk: " + std::to_string(base.faces.size()) + " base faces refined " +
+                         std::to_string(levels) + " times exceed the limit of " +
+                         std::to_string(bitstream::kMaxFinestFaces) + " faces");
+  }
+  // Level 0 only: each refinement is built when its level is decoded (bounded
+  // allocation, decoder.h).
   auto hierarchy = SemiRegularHierarchy::Build(static_cast<uint32_t>(base.positions.size()),
-                                               std::move(base.faces), levels,
-                                               bitstream::kMaxFinestFaces);
+                                               std::move(base.faces), 0, bitstream::kMaxFinestFaces);
   if (!hierarchy.ok()) return hierarchy.status().WithContext("eqm base mesh chunk");
   mesh.hierarchy = std::move(hierarchy).value();
   mesh.positions = std::move(base.positions);

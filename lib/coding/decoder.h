@@ -6,6 +6,28 @@
 // non-OK Status (kCorruptStream, kUnsupportedVersion, kUnsupportedFeature,
 // kResourceLimit), never a crash or hang. A valid but hostile stream can still
 // decode to garbage geometry (finite values, bounded size).
+//
+// Bounded allocation. For a stream (or prefix) of S bytes, no single allocation
+// exceeds DecodeAllocationBound(S) = kDecodeAllocSlackBytes +
+// kDecodeAllocPerStreamByte * S before the decoder has read the bytes that justify
+// it:
+//  * the header's level count and chunk sizes are checked against S and the limits
+//    of bitstream_shared.h before anything is built from them;
+//  * the base and kept chunks are Draco buffers: Draco checks its element counts
+//    against the chunk's bytes (the slack covers its fixed-size tables), eqmesh its
+//    output against kMaxBaseVertices / kMaxFinestFaces;
+//  * the hierarchy is built one level at a time: level j+1 (4x the faces of level
+//    j) only once level j has decoded, and level j's coefficient storage only once
+//    chunk j declares exactly that level's coefficient count (EQ: its count field;
+//    uniform: at most 256 coefficients per chunk byte, what the range coder can
+//    hold; zerotree: the payload header repeats the header's level count J).
+// So a header that claims more levels, larger chunks or a bigger base than its
+// bytes hold is refused within this bound (tests/fuzz_regressions/
+// decode_alloc_bound_test.cpp measures it). What a VALID stream decodes to is not
+// proportional to S: a level whose coefficients all quantize to zero costs about a
+// dozen bytes, so a few hundred bytes can legitimately describe the format limit
+// of kMaxFinestFaces faces (a few GB of working memory). Callers decoding untrusted
+// streams in little memory cap DecodeOptions::max_level.
 #pragma once
 
 #include <cstddef>
@@ -41,6 +63,15 @@ struct StreamInfo {
   // fetches the first prefix_size[k] bytes to show level k.
   std::vector<uint64_t> prefix_size;
 };
+
+// Measured (decode_alloc_bound_test): Draco's largest table for a hostile base chunk
+// was 80 KB, a uniform-coded filler level 1.6 KB per stream byte; the slack leaves
+// room for Draco's rANS look-up tables (up to 4 MB).
+inline constexpr uint64_t kDecodeAllocSlackBytes = uint64_t{8} << 20;
+inline constexpr uint64_t kDecodeAllocPerStreamByte = 4096;
+constexpr uint64_t DecodeAllocationBound(uint64_t stream_bytes) {
+  return kDecodeAllocSlackBytes + kDecodeAllocPerStreamByte * stream_bytes;
+}
 
 // Parses the header only; `size` may be a prefix of the stream (>= header).
 StatusOr<StreamInfo> ReadStreamInfo(const uint8_t* data, size_t size);

@@ -31,6 +31,14 @@ int64_t DecodeSymbol(RangeDecoder* rc, ComponentModel* m) {
 
 StatusOr<std::vector<Vec3>> DecodeUniform(const LevelCodingParams& params, uint32_t count,
                                           const uint8_t* data, size_t size, int j) {
+  // Each coefficient costs at least three adaptive zero flags, and an AdaptiveBit
+  // never gives a symbol more than 4065/4096 (at most ~0.99268 of the range after
+  // rounding): >= 0.0318 bits a coefficient, so `size` bytes hold fewer than
+  // 252 * size. More is a corrupt chunk, refused before allocating for it.
+  if (count > uint64_t{256} * size) {
+    return CorruptStream("level chunk " + std::to_string(j) + ": " + std::to_string(size) +
+                         " bytes cannot hold " + std::to_string(count) + " uniform-coded coefficients");
+  }
   RangeDecoder rc(data, size);
   std::array<ComponentModel, 3> models;
   const double steps[3] = {UniformStep(params, false), UniformStep(params, true),
@@ -52,6 +60,15 @@ StatusOr<std::vector<Vec3>> DecodeUniform(const LevelCodingParams& params, uint3
 StatusOr<std::vector<Vec3>> DecodeEqCoefficients(const LevelCodingParams& params,
                                                  const SemiRegularHierarchy& hierarchy, int j,
                                                  const uint8_t* data, size_t size) {
+  // The chunk must declare this level's coefficient count before the layout (the
+  // level's largest allocation) is built for it.
+  const int64_t declared = PeekEqLevelCount(data, size);
+  if (declared != hierarchy.NumOddVertices(j)) {
+    return CorruptStream("eqm level chunk " + std::to_string(j) + ": " +
+                         (declared < 0 ? std::string("too short for its side information")
+                                       : "declares " + std::to_string(declared) + " coefficients, the level has " +
+                                             std::to_string(hierarchy.NumOddVertices(j))));
+  }
   EQMESH_ASSIGN_OR_RETURN(EqLevelLayout layout, BuildEqLevelLayout(hierarchy, j));
   auto local = DecodeEqLevel(layout, data, size, params.quantum);
   if (!local.ok()) return local.status().WithContext("eqm level chunk " + std::to_string(j));

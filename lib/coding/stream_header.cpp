@@ -67,10 +67,16 @@ Status ReadCodingSetup(ByteReader* r, StreamHeader* h) {
   EQMESH_RETURN_IF_ERROR(r->ReadU8(&coder));
   EQMESH_RETURN_IF_ERROR(r->ReadU8(&levels));
   EQMESH_RETURN_IF_ERROR(r->ReadU8(&h->flags));
+  // Ids a later minor version may add: unsupported here, not corrupt (ext_spec A.5).
   if (transform > static_cast<uint8_t>(bitstream::TransformId::kLifted)) {
-    return r->Corrupt("unknown transform id " + std::to_string(transform));
+    return UnsupportedFeature("eqm header: unknown transform id " + std::to_string(transform) +
+                              " (stream version " + std::to_string(h->version_major) + "." +
+                              std::to_string(h->version_minor) + ")");
   }
-  if (coder > bitstream::kMaxCoderId) return r->Corrupt("unknown coder id " + std::to_string(coder));
+  if (coder > bitstream::kMaxCoderId) {
+    return UnsupportedFeature("eqm header: unknown coder id " + std::to_string(coder) + " (stream version " +
+                              std::to_string(h->version_major) + "." + std::to_string(h->version_minor) + ")");
+  }
   if (levels > bitstream::kMaxLevels) {
     return r->Corrupt("level count " + std::to_string(levels) + " exceeds " +
                       std::to_string(bitstream::kMaxLevels));

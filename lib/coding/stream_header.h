@@ -38,7 +38,9 @@ std::vector<uint8_t> WriteStreamHeader(const StreamHeader& header);
 
 // Parses and validates the header; *header_size receives its byte length. The
 // chunks themselves need not be present (truncation is the caller's decision).
-// Unknown major version -> kUnsupportedVersion; anything malformed -> kCorruptStream.
+// Bad magic -> kCorruptStream ("not an eqmesh stream (bad magic)"); unknown major
+// version -> kUnsupportedVersion; unknown transform or coder id -> kUnsupportedFeature;
+// anything else malformed -> kCorruptStream.
 StatusOr<StreamHeader> ReadStreamHeader(const uint8_t* data, size_t size, size_t* header_size);
 
 }  // namespace eqmesh

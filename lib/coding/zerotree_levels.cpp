@@ -40,6 +40,17 @@ int ZerotreeLevelsAvailable(const StreamInfo& s, const uint8_t* data, size_t siz
 Status DecodeZerotreeLevels(const uint8_t* data, size_t size, const StreamInfo& s, const StreamHeader& h,
                             int levels, SemiRegularMesh* mesh) {
   if (levels == 0) return Status::Ok();
+  // The payload must announce the container's J before anything is built for J levels.
+  auto announced = ReadZerotreeHeaderLevels(data + s.level_offsets[0], PayloadBytes(s, size));
+  if (!announced.ok()) return announced.status().WithContext("eqm zerotree level data");
+  if (*announced != s.levels) {
+    return CorruptStream("eqm zerotree level data codes " + std::to_string(*announced) +
+                         " levels, the header announces " + std::to_string(s.levels));
+  }
+  while (mesh->hierarchy.levels() < levels) {
+    const Status refined = mesh->hierarchy.Refine(bitstream::kMaxFinestFaces);
+    if (!refined.ok()) return refined.WithContext("eqm base mesh chunk");
+  }
   SemiRegularHierarchy storage;
   EQMESH_ASSIGN_OR_RETURN(const SemiRegularHierarchy* full, FullHierarchy(*mesh, s.levels, &storage));
   auto coeffs = DecodeZerotree(*full, data + s.level_offsets[0], PayloadBytes(s, size), h.quantum,

@@ -26,8 +26,9 @@ namespace eqmesh {
 // give, at most `requested` (0..J).
 int ZerotreeLevelsAvailable(const StreamInfo& s, const uint8_t* data, size_t size, int requested);
 
-// Runs the refinements 0 .. levels-1 on *mesh (hierarchy built to `levels`,
-// positions = the decoded level-0 values); size may be a prefix of the stream.
+// Runs the refinements 0 .. levels-1 on *mesh (hierarchy built to level 0 or
+// further, refined here to `levels` once the payload header agrees with the
+// container's; positions = the decoded level-0 values); size may be a prefix.
 Status DecodeZerotreeLevels(const uint8_t* data, size_t size, const StreamInfo& s, const StreamHeader& h,
                             int levels, SemiRegularMesh* mesh);
 

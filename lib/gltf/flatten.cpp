@@ -1,4 +1,6 @@
 // FlattenToMesh (gltf_loader.h): scene graph -> one world-space triangle mesh.
+#include <algorithm>
+
 #include <Eigen/Geometry>
 
 #include "gltf/accessor_io.h"
@@ -26,17 +28,33 @@ Transform LocalTransform(const tinygltf::Node& node) {
   return t;
 }
 
+// Instancing may repeat a mesh, within the readers' rule (mesh_io.h): at most this
+// many flattened vertices + faces per byte of the model's buffers (at least 2^24).
+constexpr uint64_t kMaxAmplification = 64;
+constexpr uint64_t kMinBudget = uint64_t{1} << 24;
+
+uint64_t Budget(const tinygltf::Model& model) {
+  uint64_t bytes = 0;
+  for (const tinygltf::Buffer& b : model.buffers) bytes += b.data.size();
+  return std::max(kMinBudget, kMaxAmplification * bytes);
+}
+
 class SceneFlattener {
  public:
-  explicit SceneFlattener(const tinygltf::Model& model) : model_(model) {}
+  explicit SceneFlattener(const tinygltf::Model& model)
+      : model_(model), visited_(model.nodes.size(), false), budget_(Budget(model)) {}
 
-  // glTF node graphs are trees, but a hostile file may contain cycles: the depth
-  // bound (one level per node) stops them.
+  // glTF node graphs are forests. A hostile file may contain cycles or share a
+  // child (node i -> i+1 twice, 40 times over, is 2^40 visits): refused.
   Status Visit(int node_index, const Transform& parent, size_t depth) {
     if (node_index < 0 || static_cast<size_t>(node_index) >= model_.nodes.size()) {
       return ParseError("node " + std::to_string(node_index) + " does not exist");
     }
     if (depth > model_.nodes.size()) return ParseError("the node hierarchy has a cycle");
+    if (visited_[static_cast<size_t>(node_index)]) {
+      return ParseError("node " + std::to_string(node_index) + " is reached twice (the node graph is not a tree)");
+    }
+    visited_[static_cast<size_t>(node_index)] = true;
     const tinygltf::Node& node = model_.nodes[static_cast<size_t>(node_index)];
     const Transform world = parent * LocalTransform(node);
     if (node.mesh >= 0) EQMESH_RETURN_IF_ERROR(AppendMesh(node.mesh, world));
@@ -59,6 +77,12 @@ class SceneFlattener {
       if (!part.ok()) {
         return part.status().WithContext("mesh " + std::to_string(mesh_index) + " primitive " + std::to_string(p));
       }
+      const uint64_t cost = part->positions.size() + part->faces.size();
+      if (cost > budget_) {
+        return ResourceLimit("the flattened scene exceeds " + std::to_string(kMaxAmplification) +
+                             " vertices+faces per buffer byte (too much instancing)");
+      }
+      budget_ -= cost;
       const uint32_t offset = static_cast<uint32_t>(out_.positions.size());
       for (const Vec3& v : part->positions) out_.positions.push_back(world * v);
       for (const Face& f : part->faces) out_.faces.push_back({f[0] + offset, f[1] + offset, f[2] + offset});
@@ -67,6 +91,8 @@ class SceneFlattener {
   }
 
   const tinygltf::Model& model_;
+  std::vector<bool> visited_;
+  uint64_t budget_;
   Mesh out_;
 };
 

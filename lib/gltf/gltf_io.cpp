@@ -7,6 +7,7 @@
 #include "gltf/placeholder_indices.h"
 #include "mesh/atomic_file.h"
 #include "mesh/file_bytes.h"
+#include "mesh/mesh_reader_support.h"
 
 namespace eqmesh::gltf {
 namespace {
@@ -56,16 +57,29 @@ void EmbedLoadedImages(tinygltf::Model* model) {
   }
 }
 
+// File access for bytes with no directory (base_dir empty: "none allowed",
+// gltf_io.h). tinygltf's default callbacks would resolve a relative URI against the
+// working directory and take an absolute one ("/etc/passwd") as it is.
+bool NoFileExists(const std::string&, void*) { return false; }
+std::string KeepPath(const std::string& path, void*) { return path; }
+bool NoFileRead(std::vector<unsigned char>*, std::string* err, const std::string& path, void*) {
+  if (err != nullptr) *err += "external file '" + path + "' not allowed for a file read from memory\n";
+  return false;
+}
+bool NoFileWrite(std::string*, const std::string&, const std::vector<unsigned char>&, void*) { return false; }
+
 StatusOr<tinygltf::Model> ParseWithTinygltf(const std::vector<uint8_t>& bytes,
                                             const std::string& name_for_errors, const std::string& base_dir) {
   tinygltf::TinyGLTF reader;
   reader.SetImageLoader(KeepEncodedImage, nullptr);
+  if (base_dir.empty()) reader.SetFsCallbacks({NoFileExists, KeepPath, NoFileRead, NoFileWrite, nullptr});
   tinygltf::Model model;
   std::string err, warn;
   bool ok = false;
   try {
     const bool is_glb = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
     if (is_glb) {
+      EQMESH_RETURN_IF_ERROR(io_internal::CheckGlbChunkLengths(bytes.data(), bytes.size(), name_for_errors));
       ok = reader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(),
                                        static_cast<unsigned int>(bytes.size()), base_dir);
     } else {

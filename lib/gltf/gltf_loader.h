@@ -67,7 +67,9 @@ Status WriteDecodedGlb(const tinygltf::Model& model, const std::string& path);
 
 // All TRIANGLES primitives of the model's default scene (every root node when no
 // scene is given) in world space, node transforms applied, as one Mesh for OBJ / PLY
-// output. Compressed primitives must have been decoded first.
+// output. Compressed primitives must have been decoded first. A node graph that is
+// not a forest (a node reached twice) is a parse error; instancing beyond 64
+// flattened vertices + faces per buffer byte (at least 2^24) is a resource limit.
 StatusOr<Mesh> FlattenToMesh(const tinygltf::Model& model);
 
 }  // namespace eqmesh::gltf

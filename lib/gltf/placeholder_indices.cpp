@@ -89,11 +89,18 @@ StatusOr<std::vector<uint8_t>> DetachPlaceholderIndices(const std::vector<uint8_
 }
 
 Status ReattachPlaceholderIndices(const std::vector<DetachedIndices>& detached, tinygltf::Model* model) {
+  // tinygltf drops primitives it cannot parse (one without "attributes", say), which
+  // shifts the ones after it: a hostile file, reported as such.
   for (const DetachedIndices& d : detached) {
-    if (d.mesh >= model->meshes.size() || d.primitive >= model->meshes[d.mesh].primitives.size()) {
-      return InternalError("placeholder indices lost their primitive");
+    tinygltf::Primitive* p = nullptr;
+    if (d.mesh < model->meshes.size() && d.primitive < model->meshes[d.mesh].primitives.size()) {
+      p = &model->meshes[d.mesh].primitives[d.primitive];
     }
-    model->meshes[d.mesh].primitives[d.primitive].indices = d.accessor;
+    if (p == nullptr || p->indices >= 0 || p->extensions.count(kExtensionName) == 0) {
+      return ParseError("mesh " + std::to_string(d.mesh) + " primitive " + std::to_string(d.primitive) +
+                        ": primitive not loadable as written (a malformed primitive before it?)");
+    }
+    p->indices = d.accessor;
   }
   return Status::Ok();
 }

@@ -1,5 +1,6 @@
 #include "mesh/mesh_reader_support.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -84,6 +85,24 @@ StatusOr<Mesh> FinishMesh(MeshBuilder&& builder, const std::string& name, ReadRe
                             " faces with fewer than 3 vertices skipped");
   }
   return mesh;
+}
+
+Status CheckGlbChunkLengths(const uint8_t* data, size_t size, const std::string& name) {
+  auto u32 = [data](uint64_t at) {
+    uint32_t v = 0;
+    for (int i = 0; i < 4; ++i) v |= static_cast<uint32_t>(data[at + static_cast<uint64_t>(i)]) << (8 * i);
+    return v;
+  };
+  if (size < 12) return Status::Ok();  // tinygltf rejects it
+  const uint64_t end = std::min<uint64_t>(u32(8), size);
+  for (uint64_t offset = 12; offset + 8 <= end;) {
+    const uint64_t chunk_end = offset + 8 + u32(offset);
+    if (chunk_end > end) {
+      return ParseError(name + ": GLB chunk at byte " + std::to_string(offset) + " extends past the end of the file");
+    }
+    offset = chunk_end;
+  }
+  return Status::Ok();
 }
 
 Status ParseErrorAt(const std::string& name, size_t line, const std::string& message) {

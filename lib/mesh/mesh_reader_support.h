@@ -70,6 +70,12 @@ inline const char* ParseInt64(const char* p, const char* end, int64_t* out) {
 // The token starting at p, for error messages (at most 32 characters).
 std::string TokenForError(const char* p, const char* end);
 
+// tinygltf 2.7 (Debian bookworm) checks a GLB chunk's length without its 8-byte
+// chunk header and then reads up to 8 bytes past the caller's buffer; every GLB goes
+// through this check first. Fails when a chunk extends past the end of the file
+// (the GLB header's length or the buffer, whichever is shorter).
+Status CheckGlbChunkLengths(const uint8_t* data, size_t size, const std::string& name);
+
 // Per-format parsers over the whole (already inflated) file.
 StatusOr<Mesh> ReadObj(const uint8_t* data, size_t size, const std::string& name, ReadReport* report);
 StatusOr<Mesh> ReadPly(const uint8_t* data, size_t size, const std::string& name, ReadReport* report);

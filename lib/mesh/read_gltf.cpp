@@ -246,6 +246,7 @@ class GltfFlattener {
 Status LoadModel(const uint8_t* data, size_t size, bool binary, const std::string& name, const std::string& base_dir,
                  tinygltf::Model* model, ReadReport* report) {
   if (size > std::numeric_limits<unsigned int>::max()) return ResourceLimit(name + ": glTF larger than 4 GiB");
+  if (binary) EQMESH_RETURN_IF_ERROR(CheckGlbChunkLengths(data, size, name));
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(SkipImage, nullptr);
   std::string err, warn;

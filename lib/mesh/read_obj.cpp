@@ -35,7 +35,7 @@ Status ResolveIndex(int64_t idx, const char* token, const char* end, size_t line
                     uint32_t* out) {
   const int64_t seen = static_cast<int64_t>(s->builder.num_positions());
   if (idx < 0) {
-    if (-idx > seen) {
+    if (idx < -seen) {  // not -idx > seen: -INT64_MIN overflows
       return ParseErrorAt(s->name, line, "relative face index " + std::to_string(idx) + " out of range (" +
                                              std::to_string(seen) + " vertices so far)");
     }

@@ -73,17 +73,25 @@ StatusOr<SemiRegularHierarchy> SemiRegularHierarchy::Build(uint32_t base_vertice
   SemiRegularHierarchy h;
   h.vertex_counts_.push_back(base_vertices);
   h.faces_.push_back(std::move(base_faces));
-  for (int j = 0; j < levels; ++j) {
-    std::vector<Face> fine;
-    std::vector<Edge> odd;
-    SubdivideConnectivity(h.vertex_counts_.back(), h.faces_.back(), &fine, &odd);
-    const uint64_t count = static_cast<uint64_t>(h.vertex_counts_.back()) + odd.size();
-    if (count > 0xFFFFFFF0ull) return ResourceLimit("semi-regular vertex count exceeds 32 bits");
-    h.vertex_counts_.push_back(static_cast<uint32_t>(count));
-    h.faces_.push_back(std::move(fine));
-    h.odd_edges_.push_back(std::move(odd));
-  }
+  for (int j = 0; j < levels; ++j) EQMESH_RETURN_IF_ERROR(h.Refine(max_finest_faces));
   return h;
+}
+
+Status SemiRegularHierarchy::Refine(uint64_t max_finest_faces) {
+  if (faces_.empty()) return InvalidArgument("refining a hierarchy that was never built");
+  if (levels() >= 16 || FinestFaceCount(faces_.back().size(), 1) > max_finest_faces) {
+    return ResourceLimit(std::to_string(faces_.back().size()) + " faces refined once more exceed the limit of " +
+                         std::to_string(max_finest_faces) + " faces");
+  }
+  std::vector<Face> fine;
+  std::vector<Edge> odd;
+  SubdivideConnectivity(vertex_counts_.back(), faces_.back(), &fine, &odd);
+  const uint64_t count = static_cast<uint64_t>(vertex_counts_.back()) + odd.size();
+  if (count > 0xFFFFFFF0ull) return ResourceLimit("semi-regular vertex count exceeds 32 bits");
+  vertex_counts_.push_back(static_cast<uint32_t>(count));
+  faces_.push_back(std::move(fine));
+  odd_edges_.push_back(std::move(odd));
+  return Status::Ok();
 }
 
 int SemiRegularHierarchy::VertexLevel(uint32_t v) const {

@@ -39,6 +39,12 @@ class SemiRegularHierarchy {
   static StatusOr<SemiRegularHierarchy> Build(uint32_t base_vertices, std::vector<Face> base_faces,
                                               int levels, uint64_t max_finest_faces = (1ull << 28));
 
+  // Appends one refinement level (same rules, same result as building it at once);
+  // on failure (ResourceLimit when the new finest level would exceed
+  // max_finest_faces) the hierarchy is unchanged. Lets the decoder allocate a level
+  // only once the stream has shown it holds that level's data.
+  Status Refine(uint64_t max_finest_faces = (1ull << 28));
+
   int levels() const { return static_cast<int>(faces_.size()) - 1; }
   uint32_t NumVertices(int level) const { return vertex_counts_[level]; }
   uint32_t NumOddVertices(int j) const { return vertex_counts_[j + 1] - vertex_counts_[j]; }

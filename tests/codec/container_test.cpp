@@ -97,10 +97,11 @@ TEST(StreamHeader, RejectsBadMagicVersionCoderAndFlags) {
   EXPECT_EQ(with(0, 'X'), StatusCode::kCorruptStream);
   EXPECT_EQ(with(4, bitstream::kVersionMajor + 1), StatusCode::kUnsupportedVersion);
   EXPECT_EQ(with(5, 99), StatusCode::kOk);  // newer minor: readable
-  EXPECT_EQ(with(6, 7), StatusCode::kCorruptStream);   // transform
+  // Ids a later minor version may add (ext_spec A.5).
+  EXPECT_EQ(with(6, 7), StatusCode::kUnsupportedFeature);   // transform
   // Zerotree (coder 1) carries one embedded payload: chunks 1.. must be empty.
   EXPECT_EQ(with(7, 1), StatusCode::kCorruptStream);
-  EXPECT_EQ(with(7, 9), StatusCode::kCorruptStream);
+  EXPECT_EQ(with(7, 9), StatusCode::kUnsupportedFeature);
   EXPECT_EQ(with(8, bitstream::kMaxLevels + 1), StatusCode::kCorruptStream);
   EXPECT_EQ(with(9, 0x80), StatusCode::kCorruptStream);
   for (size_t n = 0; n < good.size(); ++n) {

@@ -8,6 +8,12 @@
 
 namespace eqmesh {
 
+int64_t PeekEqLevelCount(const uint8_t* data, size_t size) {
+  RangeDecoder dec(data, size);
+  const uint32_t count = dec.DecodeBits(32);
+  return dec.ok() ? int64_t{count} : -1;
+}
+
 StatusOr<std::vector<std::array<int64_t, 3>>> DecodeEqLevelQuanta(const EqLevelLayout& layout,
                                                                  const uint8_t* data, size_t size) {
   const std::string where = "EQ level " + std::to_string(layout.level);

@@ -16,6 +16,11 @@
 
 namespace eqmesh {
 
+// The coefficient count a level chunk declares (the first field of its side
+// information, eq_model.h), or -1 when the chunk is too short to hold it. Cheap:
+// the decoder compares it with the level before allocating the level's layout.
+int64_t PeekEqLevelCount(const uint8_t* data, size_t size);
+
 // Coefficients in integer multiples of q0, indexed by odd index (not scan position).
 StatusOr<std::vector<std::array<int64_t, 3>>> DecodeEqLevelQuanta(const EqLevelLayout& layout,
                                                                  const uint8_t* data, size_t size);

@@ -202,6 +202,17 @@ StatusOr<std::vector<uint8_t>> EncodeZerotree(const SemiRegularHierarchy& hierar
   return stream;
 }
 
+StatusOr<int> ReadZerotreeHeaderLevels(const uint8_t* data, size_t size) {
+  if (data == nullptr || size < kFixedHeaderBytes + 1) {
+    return CorruptStream("zerotree stream: " + std::to_string(size) + " bytes, shorter than its header");
+  }
+  if (data[0] != kZerotreeVersion) {
+    return UnsupportedVersion("zerotree stream: version " + std::to_string(data[0]) + ", this build reads " +
+                              std::to_string(kZerotreeVersion));
+  }
+  return int{data[1]};
+}
+
 namespace {
 
 struct StreamHeader {
@@ -213,15 +224,8 @@ struct StreamHeader {
 };
 
 StatusOr<StreamHeader> ParseHeader(const SemiRegularHierarchy& h, const uint8_t* data, size_t size) {
-  if (data == nullptr || size < kFixedHeaderBytes + 1) {
-    return CorruptStream("zerotree stream: " + std::to_string(size) + " bytes, shorter than its header");
-  }
-  if (data[0] != kZerotreeVersion) {
-    return UnsupportedVersion("zerotree stream: version " + std::to_string(data[0]) + ", this build reads " +
-                              std::to_string(kZerotreeVersion));
-  }
   StreamHeader hdr;
-  hdr.levels = data[1];
+  EQMESH_ASSIGN_OR_RETURN(hdr.levels, ReadZerotreeHeaderLevels(data, size));
   hdr.level_shift = data[2];
   if (hdr.levels > h.levels()) {
     return CorruptStream("zerotree stream: " + std::to_string(hdr.levels) + " levels, hierarchy has " +

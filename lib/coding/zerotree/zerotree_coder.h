@@ -83,6 +83,11 @@ size_t ZerotreeMinBytes();
 // valid or not: a shorter prefix of a truncated container decodes no level.
 bool ZerotreeHeaderComplete(const uint8_t* data, size_t size);
 
+// The level count J a stream header announces (version checked as DecodeZerotree
+// does it), read without a hierarchy: the container compares it with its own header
+// before it builds the J-level hierarchy the payload is decoded against.
+StatusOr<int> ReadZerotreeHeaderLevels(const uint8_t* data, size_t size);
+
 // Decodes a stream or any prefix of it that holds the header; returns levels()
 // of the header entries, coeffs[j] with NumOddVertices(j) entries each.
 // Hostile input gives kCorruptStream, never a crash or unbounded allocation (the
