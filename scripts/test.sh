@@ -41,6 +41,6 @@ if has_stage sanitizers; then
 fi
 if has_stage fuzz; then
   stage "libFuzzer smoke run"
-  bash scripts/fuzz.sh smoke
+  FUZZ_SMOKE_SECONDS="${FUZZ_SMOKE_SECONDS:-10}" bash scripts/fuzz.sh smoke
 fi
 stage "all passed"
