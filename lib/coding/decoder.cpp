@@ -66,14 +66,14 @@ Status CheckLength(const StreamInfo& s, size_t size, const DecodeOptions& option
 
 StatusOr<Mesh> DecodeBase(const uint8_t* data, const StreamInfo& s) {
   const DracoMeshLimits limits{bitstream::kMaxBaseVertices, bitstream::kMaxFinestFaces};
-  return DecodeDracoMesh(data + s.base_offset, s.base_size, limits, "eqm base mesh chunk");
+  return DecodeDracoMesh(data + s.base_offset, static_cast<size_t>(s.base_size), limits, "eqm base mesh chunk");
 }
 
 StatusOr<Mesh> DecodeKept(const uint8_t* data, const StreamInfo& s) {
   if (!s.has_kept_exactly) return Mesh();
   const DracoMeshLimits limits{static_cast<uint32_t>(bitstream::kMaxFinestFaces),
                                bitstream::kMaxFinestFaces};
-  return DecodeDracoMesh(data + s.kept_offset, s.kept_size, limits, "eqm kept-exactly chunk");
+  return DecodeDracoMesh(data + s.kept_offset, static_cast<size_t>(s.kept_size), limits, "eqm kept-exactly chunk");
 }
 
 // Runs the refinements 0 .. levels-1 on top of the decoded base. Level j+1's
@@ -89,7 +89,7 @@ Status DecodeLevels(const uint8_t* data, const StreamInfo& s, const StreamHeader
     const std::vector<LocalFrame> frames = step.Frames(mesh->positions);
     EQMESH_ASSIGN_OR_RETURN(std::vector<Vec3> local,
                             DecodeLevelCoefficients(params, mesh->hierarchy, j,
-                                                    data + s.level_offsets[j], s.level_sizes[j]));
+                                                    data + s.level_offsets[j], static_cast<size_t>(s.level_sizes[j])));
     std::vector<Vec3> fine;
     EQMESH_RETURN_IF_ERROR(step.Synthesize(mesh->positions, frames, local, &fine));
     EQMESH_RETURN_IF_ERROR(CheckFiniteLevel(fine, j + 1));

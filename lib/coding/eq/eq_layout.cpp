@@ -134,7 +134,7 @@ class LayoutBuilder {
     for (uint64_t local = 0; local < per_base; ++local) {
       const uint64_t f = t * per_base + local;
       const std::array<Bary, 3> c = FaceCorners(local, j_, n);
-      const Face& m = fine[4 * f + 3];  // (m_ab, m_bc, m_ca)
+      const Face& m = fine[static_cast<size_t>(4 * f + 3)];  // (m_ab, m_bc, m_ca)
       const std::array<Bary, 3> mw = {Mid(c[0], c[1]), Mid(c[1], c[2]), Mid(c[2], c[0])};
       for (int a = 0; a < 3; ++a) {
         const uint32_t k = m[a] - first;
