@@ -1,14 +1,70 @@
 #include "coding/base_mesh_decoder.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <exception>
 #include <memory>
 
 #include <draco/compression/decode.h>
 #include <draco/core/decoder_buffer.h>
 
+#include "coding/entropy/byte_io.h"
+
 namespace eqmesh {
 namespace {
+
+// Draco 1.5.5 sizes its connectivity arrays from the edgebreaker header's counts
+// before it reads a single symbol (a 70-byte kept chunk declaring 172 million faces
+// asked for 689 MB at once; found by fuzz/fuzz_eqm_decode), so those counts are read
+// and checked here first. Real chunks need far more than a byte per 64 faces.
+constexpr uint64_t kDracoElementsBase = uint64_t{1} << 17;
+constexpr uint64_t kDracoElementsPerByte = 64;
+
+// Draco's uint32 varint: at most 5 bytes, the value taken modulo 2^32 as Draco does.
+bool ReadDracoVarint(ByteReader* r, uint64_t* v) {
+  const size_t start = r->offset();
+  if (!r->ReadVarint(v).ok() || r->offset() - start > 5) return false;
+  *v &= 0xFFFFFFFFu;
+  return true;
+}
+
+// The element counts at the start of a Draco 2.2 mesh buffer (ext_spec A.3):
+// header "DRACO" major minor encoder_type method flags(u16), then for edgebreaker
+// traversal_type, num_encoded_vertices, num_faces, num_attribute_data (u8),
+// num_encoded_symbols, num_encoded_split_symbols; for sequential num_faces,
+// num_points. Whatever cannot be read is left for Draco to reject.
+Status CheckDracoCounts(const uint8_t* data, size_t size, const DracoMeshLimits& limits, const std::string& what) {
+  static constexpr char kMagic[5] = {'D', 'R', 'A', 'C', 'O'};
+  if (size < 11 || std::memcmp(data, kMagic, 5) != 0) return Status::Ok();
+  if (data[5] != 2 || data[6] != 2) {
+    return CorruptStream(what + ": Draco bitstream version " + std::to_string(data[5]) + "." +
+                         std::to_string(data[6]) + ", the format requires 2.2");
+  }
+  if ((data[10] & 0x80) != 0) return UnsupportedFeature(what + ": Draco metadata is not supported");
+  ByteReader r(data + 11, size - 11, what);
+  uint64_t faces = 0, vertices = 0, extra = 0;
+  uint8_t byte = 0;
+  if (data[8] == 1) {  // edgebreaker
+    if (!r.ReadU8(&byte).ok() || !ReadDracoVarint(&r, &vertices) || !ReadDracoVarint(&r, &faces) ||
+        !r.ReadU8(&byte).ok() || !ReadDracoVarint(&r, &extra) || !ReadDracoVarint(&r, &extra)) {
+      return Status::Ok();
+    }
+    vertices += extra;  // split symbols add vertices while decoding
+  } else if (data[8] == 0) {  // sequential
+    if (!ReadDracoVarint(&r, &faces) || !ReadDracoVarint(&r, &vertices)) return Status::Ok();
+  } else {
+    return Status::Ok();
+  }
+  const uint64_t room = kDracoElementsBase + kDracoElementsPerByte * size;
+  if (faces > limits.max_faces || faces > room || vertices > room) {
+    return ResourceLimit(what + ": Draco header declares " + std::to_string(faces) + " faces / " +
+                         std::to_string(vertices) + " vertices in a " + std::to_string(size) +
+                         "-byte chunk (limit " + std::to_string(std::min<uint64_t>(room, limits.max_faces)) +
+                         " faces, " + std::to_string(room) + " vertices)");
+  }
+  return Status::Ok();
+}
 
 Status CheckFaces(const Mesh& mesh, const std::string& what) {
   const size_t n = mesh.positions.size();
@@ -59,6 +115,7 @@ StatusOr<Mesh> ConvertDracoMesh(const draco::Mesh& dm, const DracoMeshLimits& li
 
 StatusOr<Mesh> DecodeDracoMesh(const uint8_t* data, size_t size, const DracoMeshLimits& limits,
                                const std::string& what) {
+  EQMESH_RETURN_IF_ERROR(CheckDracoCounts(data, size, limits, what));
   try {
     draco::DecoderBuffer buffer;
     buffer.Init(reinterpret_cast<const char*>(data), size);

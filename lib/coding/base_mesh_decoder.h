@@ -8,9 +8,12 @@
 // scaling values; the encoder chooses the quantization depth by R-D (see
 // base_mesh_encoder.h).
 //
-// Draco is treated as untrusted code on untrusted bytes: any exception is caught,
-// and its output is checked (counts against limits, indices in range, no repeated
-// corner, finite coordinates) before eqmesh uses it.
+// Draco is treated as untrusted code on untrusted bytes: the element counts of the
+// buffer's header are checked before Draco sees it (Draco 1.5.5 allocates for them
+// unchecked: at most 2^17 + 64 per chunk byte, and the limits below), any
+// exception is caught, and its output is checked (counts against limits, indices in
+// range, no repeated corner, finite coordinates) before eqmesh uses it. Draco
+// metadata is refused (kUnsupportedFeature).
 #pragma once
 
 #include <cstddef>

@@ -13,9 +13,11 @@
 // it:
 //  * the header's level count and chunk sizes are checked against S and the limits
 //    of bitstream_shared.h before anything is built from them;
-//  * the base and kept chunks are Draco buffers: Draco checks its element counts
-//    against the chunk's bytes (the slack covers its fixed-size tables), eqmesh its
-//    output against kMaxBaseVertices / kMaxFinestFaces;
+//  * the base and kept chunks are Draco buffers, whose connectivity header counts
+//    Draco 1.5 allocates for unchecked: eqmesh reads them first and refuses more
+//    than 2^17 + 64 faces or vertices per chunk byte (base_mesh_decoder.h; the slack
+//    covers what Draco then allocates, and its fixed-size tables), and checks
+//    Draco's output against kMaxBaseVertices / kMaxFinestFaces;
 //  * the hierarchy is built one level at a time: level j+1 (4x the faces of level
 //    j) only once level j has decoded, and level j's coefficient storage only once
 //    chunk j declares exactly that level's coefficient count (EQ: its count field;
@@ -64,9 +66,10 @@ struct StreamInfo {
   std::vector<uint64_t> prefix_size;
 };
 
-// Measured (decode_alloc_bound_test): Draco's largest table for a hostile base chunk
-// was 80 KB, a uniform-coded filler level 1.6 KB per stream byte; the slack leaves
-// room for Draco's rANS look-up tables (up to 4 MB).
+// Measured (decode_alloc_bound_test): Draco's largest allocation for a hostile base
+// chunk was 80 KB, 1.7 MB for one declaring the most faces the resource rule allows;
+// a uniform-coded filler level 1.6 KB per stream byte. The slack also leaves room
+// for Draco's rANS look-up tables (up to 4 MB).
 inline constexpr uint64_t kDecodeAllocSlackBytes = uint64_t{8} << 20;
 inline constexpr uint64_t kDecodeAllocPerStreamByte = 4096;
 constexpr uint64_t DecodeAllocationBound(uint64_t stream_bytes) {

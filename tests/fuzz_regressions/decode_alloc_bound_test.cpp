@@ -15,6 +15,7 @@
 #include "codec/codec_fixtures.h"
 #include "coding/decoder.h"
 #include "coding/encoder.h"
+#include "coding/entropy/byte_io.h"
 #include "coding/stream_header.h"
 
 namespace {
@@ -247,6 +248,56 @@ TEST(DecodeAllocBound, DracoChunksClaimingHugeCounts) {
       }
     }
     std::printf("[ alloc    ] %-9s Draco fields: largest allocation %zu\n", s.name, worst);
+  }
+}
+
+// Base chunk with its edgebreaker header rewritten (ext_spec A.3: "DRACO", version,
+// type, method, flags, traversal, then varints num_encoded_vertices, num_faces, a
+// byte, num_encoded_symbols, num_encoded_split_symbols) to declare `faces` faces and
+// vertices; the rest of the chunk unchanged.
+std::vector<uint8_t> WithDracoCounts(const Parsed& p, uint64_t faces) {
+  const std::vector<uint8_t> base(p.chunks.begin(), p.chunks.begin() + static_cast<std::ptrdiff_t>(p.header.base_size));
+  EXPECT_EQ(base[8], 1) << "the sample's base chunk is not edgebreaker";
+  ByteReader r(base.data() + 12, base.size() - 12, "draco");
+  uint64_t v = 0;
+  uint8_t attribute_data = 0;
+  EXPECT_TRUE(r.ReadVarint(&v).ok() && r.ReadVarint(&v).ok() && r.ReadU8(&attribute_data).ok() &&
+              r.ReadVarint(&v).ok() && r.ReadVarint(&v).ok());
+  ByteWriter w;
+  w.PutBytes(base.data(), 12);
+  w.PutVarint(faces);  // num_encoded_vertices
+  w.PutVarint(faces);  // num_faces
+  w.PutU8(attribute_data);
+  w.PutVarint(faces);  // num_encoded_symbols
+  w.PutVarint(0);      // num_encoded_split_symbols
+  w.PutBytes(base.data() + 12 + r.offset(), base.size() - 12 - r.offset());
+  std::vector<uint8_t> chunks = w.Take();
+  chunks.insert(chunks.end(), p.chunks.begin() + static_cast<std::ptrdiff_t>(p.header.base_size), p.chunks.end());
+  StreamHeader h = p.header;
+  h.base_size = h.base_size - base.size() + (chunks.size() - (p.chunks.size() - base.size()));
+  return Rebuild(h, chunks);
+}
+
+// Draco allocates for the counts of its connectivity header before reading the
+// symbols behind them (a fuzzer-found 241-byte stream asked for 689 MB): counts up
+// to the resource rule of ext_spec A.3 (2^17 + 64 per chunk byte) stay within the
+// bound, larger ones are refused before Draco runs.
+TEST(DecodeAllocBound, DracoHeaderCounts) {
+  for (const Sample& s : Samples()) {
+    size_t worst = 0;
+    const Parsed p = Parse(s.bytes);
+    // The rewritten varints make the chunk up to 16 bytes longer: 64 * 16 of margin.
+    const uint64_t rule = (uint64_t{1} << 17) + 64 * p.header.base_size;
+    for (const uint64_t faces : {rule, rule + 1024, uint64_t{1} << 24, uint64_t{0xFFFFFFFF} / 3}) {
+      const std::vector<uint8_t> stream = WithDracoCounts(p, faces);
+      ExpectWithinBound(stream, std::to_string(faces) + " declared faces", &worst);
+      const Status status = Decode(stream.data(), stream.size()).status();
+      EXPECT_FALSE(status.ok());
+      if (faces > rule) {
+        EXPECT_EQ(status.code(), StatusCode::kResourceLimit) << status.ToString();
+      }
+    }
+    std::printf("[ alloc    ] %-9s Draco counts: largest allocation %zu\n", s.name, worst);
   }
 }
 
