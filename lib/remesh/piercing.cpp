@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <Eigen/Geometry>
 #include <cmath>
+#include <optional>
 
 #include "remesh/level_domain.h"
 #include "remesh/parallel_for.h"
@@ -50,6 +51,13 @@ Vec3d Midpoint(int slot) {
   return u;
 }
 
+// An input triangle's chart image must keep its orientation. One that flips was
+// unfolded inconsistently (its corners reached around a vertex of valence != 6
+// along different paths), and a parameter interpolated in it is meaningless:
+// horse, a leg vertex forward-mapped through such a triangle landed on another
+// patch and stayed a spike at every level (78 -> 94 dB once refused).
+bool ImageIsConsistent(const Vec2 (&c)[3]) { return Orient2d(c[0], c[1], c[2]) > 0.0; }
+
 void ClampBary(Vec3d* b) {
   *b = b->cwiseMax(0.0);
   const double s = b->sum();
@@ -58,9 +66,11 @@ void ClampBary(Vec3d* b) {
 
 class LevelRefiner {
  public:
-  LevelRefiner(const SemiRegularHierarchy& h, int j, const InputSurface& s, const RefineOptions& options,
+  LevelRefiner(const SemiRegularHierarchy& h, int j, const InputSurface& s,
                std::vector<Vec3>* positions, std::vector<ParamPoint>* params)
-      : h_(h), j_(j), s_(s), options_(options), dom_(h, j), pos_(*positions), params_(*params) {}
+      : h_(h), j_(j), s_(s), dom_(h, j), pos_(*positions), params_(*params) {
+    fine_ = dom_.faces().size() >= s.mesh->faces.size();
+  }
 
   void Run(std::vector<Vec3>* positions, std::vector<VertexKind>* kinds, LevelStats* stats);
   std::vector<ParamPoint> TakeParams() { return std::move(params_out_); }
@@ -68,8 +78,13 @@ class LevelRefiner {
  private:
   void BuildBuckets();
   EdgeChoice PierceEdge(uint32_t k, Chart* chart) const;
+  std::vector<EdgeChoice> NormalCandidates(uint32_t k, Chart* chart, size_t limit) const;
+  EdgeChoice MidpointChoice(uint32_t k) const;
   EdgeChoice BoundaryPoint(uint32_t k) const;
   bool InKite(const Vec3d& u, int slot) const;
+  Vec3d DiamondParam(uint32_t k, const Vec3& x) const;
+  Vec3 FineMidpoint(uint32_t k) const;
+  std::optional<RayHit> NearestHit(const Vec3& p, const Vec3& n, double reach) const;
   Vec3 ForwardMap(uint32_t root, const Vec3d& u, const Vec3& fallback_near, Chart* chart) const;
   Vec3d EdgePointIn(uint32_t f, int i) const;
   bool ChildrenValid(uint32_t f) const;
@@ -77,16 +92,13 @@ class LevelRefiner {
   void ForwardMapDemoted();
   std::array<std::array<Vec3d, 3>, 4> Children(uint32_t f) const;
   ParamPoint Relocate(uint32_t f, uint32_t x) const;
-  ParamPoint Project(uint32_t f, uint32_t x, const ParamPoint& located, const std::vector<Vec3>& fine_pos) const;
   bool RelocateBoundary(uint32_t f, uint32_t x, ParamPoint* out) const;
-  void ProjectGlobally(const std::vector<Vec3>& fine_pos, std::vector<ParamPoint>* next) const;
-  void UpdateParams(const std::vector<Vec3>& fine_pos, std::vector<ParamPoint>* next) const;
+  void UpdateParams(std::vector<ParamPoint>* next) const;
   double RmsError(const std::vector<Vec3>& fine_pos, const std::vector<ParamPoint>& next) const;
 
   const SemiRegularHierarchy& h_;
   const int j_;
   const InputSurface& s_;
-  const RefineOptions options_;
   const LevelDomain dom_;
   const std::vector<Vec3>& pos_;
   const std::vector<ParamPoint>& params_;
@@ -95,6 +107,10 @@ class LevelRefiner {
   std::vector<LocalFrame> frames_;
   std::vector<EdgeChoice> choice_;
   std::vector<ParamPoint> params_out_;
+  // A level with at least as many faces as the input: hits are validated and
+  // demoted midpoints placed in 3D (DiamondParam, FineMidpoint) instead of
+  // through charts.
+  bool fine_ = false;
 };
 
 void LevelRefiner::BuildBuckets() {
@@ -115,9 +131,10 @@ bool LevelRefiner::InKite(const Vec3d& u, int slot) const {
          Orient2d(g, a, p) >= 0.0;
 }
 
-EdgeChoice LevelRefiner::PierceEdge(uint32_t k, Chart* chart) const {
+// Every admissible normal position for odd vertex k (interior edges only),
+// closest to the prediction first; at most `limit`.
+std::vector<EdgeChoice> LevelRefiner::NormalCandidates(uint32_t k, Chart* chart, size_t limit) const {
   const EdgeSides& sides = dom_.Sides(k);
-  if (sides.right == kNoNeighbour) return BoundaryPoint(k);
   const Edge& e = h_.OddEdge(j_, k);
   const Vec3& p = predicted_[k];
   const Vec3& n = frames_[k].normal;
@@ -126,29 +143,99 @@ EdgeChoice LevelRefiner::PierceEdge(uint32_t k, Chart* chart) const {
   s_.bvh->RayAllHits(p - reach * n, n, 0.0, 2.0 * reach, &hits);
   std::sort(hits.begin(), hits.end(),
             [reach](const RayHit& x, const RayHit& y) { return std::abs(x.t - reach) < std::abs(y.t - reach); });
-  EdgeChoice out;
-  if (!hits.empty()) {
-    chart->Reset(sides.left);
-    for (const RayHit& hit : hits) {
+  std::vector<EdgeChoice> out;
+  if (!hits.empty() && !fine_) chart->Reset(sides.left);
+  for (const RayHit& hit : hits) {
+    if (out.size() >= limit) break;
+    EdgeChoice c;
+    c.position = p + (hit.t - reach) * n;
+    c.kind = VertexKind::kNormal;
+    if (fine_) {
+      c.u = DiamondParam(k, c.position);
+    } else {
       const Face& tri = s_.mesh->faces[hit.face];
-      Vec3d u = Vec3d::Zero();
+      c.u = Vec3d::Zero();
       bool mapped = true;
+      Vec2 c2[3];
       for (int i = 0; i < 3 && mapped; ++i) {
         Vec3d ui;
         mapped = chart->Map(params_[tri[i]], &ui, kMaxChartFaces);
-        u += hit.barycentric[i] * ui;
+        c.u += hit.barycentric[i] * ui;
+        c2[i] = ToReference2d(ui);
       }
-      if (!mapped || !InKite(u, sides.left_slot)) continue;
-      out.position = p + (hit.t - reach) * n;
-      out.u = u;
-      out.kind = VertexKind::kNormal;
-      return out;
+      if (!mapped || !ImageIsConsistent(c2)) continue;
     }
+    if (InKite(c.u, sides.left_slot)) out.push_back(c);
   }
-  out.u = Midpoint(sides.left_slot);
+  return out;
+}
+
+EdgeChoice LevelRefiner::MidpointChoice(uint32_t k) const {
+  EdgeChoice out;
+  out.u = Midpoint(dom_.Sides(k).left_slot);
   out.kind = VertexKind::kNonNormal;
   out.needs_forward = true;
   return out;
+}
+
+EdgeChoice LevelRefiner::PierceEdge(uint32_t k, Chart* chart) const {
+  if (dom_.Sides(k).right == kNoNeighbour) return BoundaryPoint(k);
+  const std::vector<EdgeChoice> normal = NormalCandidates(k, chart, 1);
+  return normal.empty() ? MidpointChoice(k) : normal.front();
+}
+
+// Chart coordinates (left face of edge k) of a point near the edge's diamond,
+// from its projection onto the level-j triangles themselves: on levels finer
+// than the input the remesh lies within a fraction of an input triangle of the
+// surface, and the 3D diamond is a better chart than unfolding many small faces
+// around the input triangle a hit lies in.
+Vec3d LevelRefiner::DiamondParam(uint32_t k, const Vec3& x) const {
+  const EdgeSides& sides = dom_.Sides(k);
+  auto barycentric = [&](uint32_t f) {
+    const Face& t = dom_.faces()[f];
+    const Vec3& a = pos_[t[0]];
+    const Vec3 e1 = pos_[t[1]] - a, e2 = pos_[t[2]] - a, d = x - a;
+    const double d11 = e1.dot(e1), d12 = e1.dot(e2), d22 = e2.dot(e2);
+    const double det = d11 * d22 - d12 * d12;
+    if (!(std::abs(det) > 0.0)) return Vec3d(1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0);
+    const double b1 = (d22 * d.dot(e1) - d12 * d.dot(e2)) / det;
+    const double b2 = (d11 * d.dot(e2) - d12 * d.dot(e1)) / det;
+    return Vec3d(1.0 - b1 - b2, b1, b2);
+  };
+  const Vec3d left = barycentric(sides.left);
+  if (left[(sides.left_slot + 2) % 3] >= 0.0) return left;
+  const Vec3d right = barycentric(sides.right);
+  // Inverse of LevelDomain::LeftToRight.
+  const int a = sides.left_slot, b = (a + 1) % 3, c = (a + 2) % 3, r = sides.right_slot;
+  Vec3d u;
+  u[c] = -right[(r + 2) % 3];
+  u[b] = right[r] + right[(r + 2) % 3];
+  u[a] = right[(r + 1) % 3] + right[(r + 2) % 3];
+  return u;
+}
+
+// Non-normal vertex on a level finer than the input: pierce from the edge's
+// 3D midpoint, else take the closest surface point to it.
+Vec3 LevelRefiner::FineMidpoint(uint32_t k) const {
+  const Edge& e = h_.OddEdge(j_, k);
+  const Vec3 m = 0.5 * (pos_[e[0]] + pos_[e[1]]);
+  const Vec3& n = frames_[k].normal;
+  const double reach = 0.5 * (pos_[e[0]] - pos_[e[1]]).norm();
+  const std::optional<RayHit> hit = NearestHit(m, n, reach);
+  if (hit) return m + hit->t * n;
+  const ClosestPointResult cp = s_.bvh->ClosestPoint(m);
+  return cp.found() ? cp.point : m;
+}
+
+std::optional<RayHit> LevelRefiner::NearestHit(const Vec3& p, const Vec3& n, double reach) const {
+  std::vector<RayHit> hits;
+  s_.bvh->RayAllHits(p - reach * n, n, 0.0, 2.0 * reach, &hits);
+  std::optional<RayHit> best;
+  for (RayHit h : hits) {
+    h.t -= reach;
+    if (!best || std::abs(h.t) < std::abs(best->t)) best = h;
+  }
+  return best;
 }
 
 // Boundary edge: the parametric midpoint of the input boundary polyline between
@@ -209,7 +296,7 @@ Vec3 LevelRefiner::ForwardMap(uint32_t root, const Vec3d& u, const Vec3& fallbac
           c2[i] = ToReference2d(ui);
         }
         Vec3d b;
-        if (!mapped || !Barycentric2d(target, c2[0], c2[1], c2[2], &b)) continue;
+        if (!mapped || !ImageIsConsistent(c2) || !Barycentric2d(target, c2[0], c2[1], c2[2], &b)) continue;
         if (b.minCoeff() > best) {
           best = b.minCoeff();
           ClampBary(&b);
@@ -218,7 +305,13 @@ Vec3 LevelRefiner::ForwardMap(uint32_t root, const Vec3d& u, const Vec3& fallbac
         }
       }
     }
-    if (best >= -1e-9 && visit >= 3) break;
+    // The first face in breadth-first order whose input triangles contain the
+    // target wins: farther faces are reached through more unfoldings, and around
+    // a vertex of valence != 6 those disagree, so a far triangle can appear to
+    // contain the target with a larger margin than the right one (stanford-bunny:
+    // a base-edge midpoint placed 3 % of the diagonal away from its own patch,
+    // a spike that no finer level removed).
+    if (best >= -1e-9) break;
   }
   if (best > -0.5) return best_point;
   const ClosestPointResult cp = s_.bvh->ClosestPoint(fallback_near);
@@ -336,49 +429,14 @@ ParamPoint LevelRefiner::Relocate(uint32_t f, uint32_t x) const {
   return out;
 }
 
-// Re-parameterizes an input vertex by closest-point projection onto the new
-// level's triangles near its located child. Guskov et al. smooth the
-// parameterization between levels; projecting onto the (by now close) remesh
-// is a cheap stand-in that stops the distortion of coarse levels from
-// compounding, because it lets each level's parameter follow the 3D geometry.
-ParamPoint LevelRefiner::Project(uint32_t f, uint32_t x, const ParamPoint& located,
-                                 const std::vector<Vec3>& fine_pos) const {
-  const std::vector<Face>& fine = h_.Faces(j_ + 1);
-  const Vec3& p = s_.mesh->positions[x];
-  ParamPoint best = located;
-  std::array<double, 3> b;
-  const Face& lf = fine[located.face];
-  double best_d = (ClosestPointOnTriangle(p, fine_pos[lf[0]], fine_pos[lf[1]], fine_pos[lf[2]], &b) - p).squaredNorm();
-  best.bary = b;
-  auto consider = [&](uint32_t g) {
-    for (uint32_t c = 0; c < 4; ++c) {
-      const uint32_t child = 4 * g + c;
-      if (child == located.face) continue;
-      const Face& t = fine[child];
-      std::array<double, 3> bb;
-      const double d = (ClosestPointOnTriangle(p, fine_pos[t[0]], fine_pos[t[1]], fine_pos[t[2]], &bb) - p).squaredNorm();
-      if (d < best_d) {
-        best_d = d;
-        best.face = child;
-        best.bary = bb;
-      }
-    }
-  };
-  consider(f);
-  for (int i = 0; i < 3; ++i) {
-    const uint32_t g = dom_.Neighbour(f, i);
-    if (g != kNoNeighbour) consider(g);
-  }
-  return best;
-}
-
 void LevelRefiner::ForwardMapDemoted() {
   ParallelFor(choice_.size(), [&](size_t begin, size_t end, size_t) {
     Chart chart(dom_);
     for (size_t k = begin; k < end; ++k) {
       EdgeChoice& c = choice_[k];
       if (!c.needs_forward) continue;
-      c.position = ForwardMap(dom_.Sides(static_cast<uint32_t>(k)).left, c.u, predicted_[k], &chart);
+      c.position = fine_ ? FineMidpoint(static_cast<uint32_t>(k))
+                         : ForwardMap(dom_.Sides(static_cast<uint32_t>(k)).left, c.u, predicted_[k], &chart);
       c.needs_forward = false;
     }
   });
@@ -405,24 +463,21 @@ void LevelRefiner::Run(std::vector<Vec3>* positions, std::vector<VertexKind>* ki
     if (c.kind == VertexKind::kBoundary) ++stats->boundary;
   }
   std::vector<ParamPoint> next(params_.size());
-  UpdateParams(*positions, &next);
+  UpdateParams(&next);
   stats->rms_error = RmsError(*positions, next);
   params_out_ = std::move(next);
 }
 
-void LevelRefiner::UpdateParams(const std::vector<Vec3>& fine_pos, std::vector<ParamPoint>* next) const {
+void LevelRefiner::UpdateParams(std::vector<ParamPoint>* next) const {
   const size_t nf = dom_.faces().size();
   ParallelFor(nf, [&](size_t begin, size_t end, size_t) {
     for (size_t f = begin; f < end; ++f) {
       for (uint32_t n = bucket_offsets_[f]; n < bucket_offsets_[f + 1]; ++n) {
         const uint32_t x = bucket_items_[n];
-        ParamPoint& out = (*next)[x];
-        out = Relocate(static_cast<uint32_t>(f), x);
-        if (options_.project_locally && !s_.is_boundary[x]) out = Project(static_cast<uint32_t>(f), x, out, fine_pos);
+        (*next)[x] = Relocate(static_cast<uint32_t>(f), x);
       }
     }
   });
-  if (options_.global_projection_ratio > 0.0) ProjectGlobally(fine_pos, next);
 }
 
 // Remesh error seen from the input vertices (cheap stand-in for Metro).
@@ -439,42 +494,6 @@ double LevelRefiner::RmsError(const std::vector<Vec3>& fine_pos, const std::vect
     return local;
   });
   return next.empty() ? 0.0 : std::sqrt(sum / static_cast<double>(next.size()));
-}
-
-// Re-parameterizes an input vertex onto the closest level-(j+1) triangle
-// anywhere on the remesh, facing the same way as the input around it, when that
-// is clearly (options_.global_projection_ratio) closer than its current one.
-// The local projection only looks one face ring away; where the base
-// parameterization compressed a protrusion (ear tips, claws) its input
-// vertices stay assigned to triangles that cut the protrusion off, and only a
-// global search moves them onto the triangles that now cover it.
-void LevelRefiner::ProjectGlobally(const std::vector<Vec3>& fine_pos, std::vector<ParamPoint>* next) const {
-  Mesh level;
-  level.positions = fine_pos;
-  level.faces = h_.Faces(j_ + 1);
-  StatusOr<TriangleBvh> bvh = TriangleBvh::Build(level);
-  if (!bvh.ok()) return;  // non-finite positions: keep the local parameters
-  std::vector<Vec3> face_normal(level.faces.size());
-  for (size_t f = 0; f < face_normal.size(); ++f) {
-    const Face& t = level.faces[f];
-    face_normal[f] = (fine_pos[t[1]] - fine_pos[t[0]]).cross(fine_pos[t[2]] - fine_pos[t[0]]);
-  }
-  ParallelFor(next->size(), [&](size_t begin, size_t end, size_t) {
-    for (size_t x = begin; x < end; ++x) {
-      if (s_.is_boundary[x]) continue;
-      ParamPoint& cur = (*next)[x];
-      const Vec3& p = s_.mesh->positions[x];
-      const Face& t = level.faces[cur.face];
-      std::array<double, 3> b;
-      const double d_cur = (ClosestPointOnTriangle(p, fine_pos[t[0]], fine_pos[t[1]], fine_pos[t[2]], &b) - p).norm();
-      const Vec3& n = s_.normals[x];
-      const ClosestPointResult cp = bvh->ClosestPointFiltered(
-          p, [&](uint32_t f) { return face_normal[f].dot(n) > 0.0; }, d_cur);
-      if (!cp.found() || std::sqrt(cp.squared_distance) >= d_cur * options_.global_projection_ratio) continue;
-      cur.face = cp.face;
-      cur.bary = cp.barycentric;
-    }
-  });
 }
 
 }  // namespace
@@ -499,11 +518,11 @@ InputSurface::InputSurface(const Mesh& m, const TriangleBvh& b, std::vector<uint
 }
 
 void RefineLevel(const SemiRegularHierarchy& hierarchy, int j, const InputSurface& surface,
-                 const RefineOptions& options, std::vector<Vec3>* positions, std::vector<VertexKind>* kinds,
-                 std::vector<ParamPoint>* params, LevelStats* stats) {
+                 std::vector<Vec3>* positions, std::vector<VertexKind>* kinds, std::vector<ParamPoint>* params,
+                 LevelStats* stats) {
   *stats = LevelStats();
   std::vector<Vec3> level = *positions;
-  LevelRefiner refiner(hierarchy, j, surface, options, &level, params);
+  LevelRefiner refiner(hierarchy, j, surface, &level, params);
   refiner.Run(positions, kinds, stats);
   *params = refiner.TakeParams();
 }

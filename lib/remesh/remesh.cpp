@@ -3,8 +3,6 @@
 #include "remesh/remesh.h"
 
 #include <algorithm>
-#include <array>
-#include <cstdio>
 #include <string>
 #include <chrono>
 #include <cmath>
@@ -14,7 +12,6 @@
 #include "mesh/triangle_bvh.h"
 #include "remesh/base_domain.h"
 #include "remesh/input_check.h"
-#include "remesh/parallel_for.h"
 #include "remesh/piercing.h"
 
 namespace eqmesh {
@@ -156,32 +153,8 @@ bool StopRefining(const RemeshOptions& options, int levels_done, const std::vect
   return psnr.size() >= 3 && psnr.back() - psnr[psnr.size() - 2] < kAutoMinGainDb;
 }
 
-// Ways of carrying the parameterization from level to level (piercing.h
-// RefineOptions). The affine split alone keeps the base map's distortion; the
-// projections undo it where a protrusion was compressed but can also pull
-// input vertices across thin parts. Neither wins on every scan (Metro PSNR at
-// 6 levels, bench/README_remesh.md): stanford-bunny 75.4 / 83.5 dB,
-// armadillo_50k 74.8 / 81.9, skull_50k 83.6 / 73.9, so Remesh refines with the
-// first and tries the next while the estimate stays below the target, keeping
-// the better estimate.
-struct ParameterMode {
-  const char* name;
-  RefineOptions options;
-};
-const std::array<ParameterMode, 2> kParameterModes = {{
-    {"affine", RefineOptions{false, 0.0}},
-    {"projected", RefineOptions{true, 0.7}},
-}};
-
-std::string FormatDb(double db) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.2f", db);
-  return buf;
-}
-
-// One complete refinement of the base domain under one ParameterMode.
+// One complete refinement of the base domain.
 struct Refinement {
-  std::string mode;
   SemiRegularHierarchy hierarchy;
   std::vector<Vec3> positions;
   std::vector<VertexKind> kinds;
@@ -189,34 +162,7 @@ struct Refinement {
   size_t normal = 0, non_normal = 0;
   std::vector<double> normal_fraction_per_level;
   std::vector<double> estimated_psnr_db_per_level;
-  double FinalPsnr() const {
-    return estimated_psnr_db_per_level.empty() ? 0.0 : estimated_psnr_db_per_level.back();
-  }
-  // FinalPsnr with the other direction folded in (SymmetricEstimate).
-  double symmetric_psnr = 0.0;
 };
-
-// The per-level estimate sees only input vertices to the remesh; a remesh
-// triangle that spans a thin part or a fold is invisible to it. Area-weighted
-// RMS distance of the finest faces' centroids to the input covers that
-// direction; the estimate is the worse of the two, as in Metro.
-double SymmetricEstimateDb(const Refinement& r, const TriangleBvh& input, double diagonal) {
-  const std::vector<Face>& faces = r.hierarchy.Faces(r.levels);
-  const Eigen::Vector2d sum_area = ParallelSum(faces.size(), Eigen::Vector2d(0.0, 0.0), [&](size_t begin, size_t end) {
-    Eigen::Vector2d local(0.0, 0.0);
-    for (size_t f = begin; f < end; ++f) {
-      const Vec3& p0 = r.positions[faces[f][0]];
-      const Vec3& p1 = r.positions[faces[f][1]];
-      const Vec3& p2 = r.positions[faces[f][2]];
-      const double w = (p1 - p0).cross(p2 - p0).norm();
-      local += Eigen::Vector2d(w * input.ClosestPoint((p0 + p1 + p2) / 3.0).squared_distance, w);
-    }
-    return local;
-  });
-  const double sum = sum_area[0], area = sum_area[1];
-  const double rms_ba = area > 0.0 ? std::sqrt(sum / area) : 0.0;
-  return std::min(r.FinalPsnr(), EstimatedPsnrDb(diagonal, rms_ba));
-}
 
 struct RefineContext {
   const BaseDomain& base;
@@ -227,9 +173,8 @@ struct RefineContext {
   size_t input_vertices;
 };
 
-StatusOr<Refinement> RefineAllLevels(const RefineContext& c, const ParameterMode& mode) {
+StatusOr<Refinement> RefineAllLevels(const RefineContext& c) {
   Refinement r;
-  r.mode = mode.name;
   const uint32_t nb = static_cast<uint32_t>(c.base.base_to_input.size());
   for (uint32_t v : c.base.base_to_input) r.positions.push_back(c.surface_mesh.positions[v]);
   r.kinds.assign(nb, VertexKind::kBase);
@@ -239,9 +184,9 @@ StatusOr<Refinement> RefineAllLevels(const RefineContext& c, const ParameterMode
                                                  : static_cast<uint64_t>(r.positions.size()) * 4;
     if (StopRefining(c.options, r.levels, r.estimated_psnr_db_per_level, next_vertices, c.input_vertices)) break;
     EQMESH_ASSIGN_OR_RETURN(r.hierarchy, SemiRegularHierarchy::Build(nb, c.base.faces, r.levels + 1));
-    ReportProgress(c.options.progress, std::string("pierce level ") + std::to_string(r.levels + 1) + " (" + mode.name + ")", 0.0);
+    ReportProgress(c.options.progress, std::string("pierce level ") + std::to_string(r.levels + 1), 0.0);
     LevelStats stats;
-    RefineLevel(r.hierarchy, r.levels, c.surface, mode.options, &r.positions, &r.kinds, &params, &stats);
+    RefineLevel(r.hierarchy, r.levels, c.surface, &r.positions, &r.kinds, &params, &stats);
     r.normal += stats.normal;
     r.non_normal += stats.non_normal;
     const size_t pierced = stats.normal + stats.non_normal;
@@ -299,17 +244,7 @@ StatusOr<SemiRegularMesh> Remesh(const Mesh& input, const RemeshOptions& options
   const InputSurface surface(prep.surface, bvh, prep.boundary);
   const double diagonal = BoundingBoxDiagonal(prep.surface);
   const RefineContext context{base, prep.surface, surface, options, diagonal, prep.input_vertices};
-  EQMESH_ASSIGN_OR_RETURN(Refinement best, RefineAllLevels(context, kParameterModes[0]));
-  best.symmetric_psnr = SymmetricEstimateDb(best, bvh, diagonal);
-  for (size_t m = 1; m < kParameterModes.size() && best.symmetric_psnr < kAutoTargetPsnrDb; ++m) {
-    EQMESH_ASSIGN_OR_RETURN(Refinement other, RefineAllLevels(context, kParameterModes[m]));
-    other.symmetric_psnr = SymmetricEstimateDb(other, bvh, diagonal);
-    report.notes.push_back(std::string("parameterization ") + kParameterModes[m].name + ": estimated " +
-                           FormatDb(other.symmetric_psnr) + " dB vs " + FormatDb(best.symmetric_psnr) + " dB (" +
-                           best.mode + ")");
-    if (other.symmetric_psnr > best.symmetric_psnr) best = std::move(other);
-  }
-  report.notes.push_back(std::string("parameterization used: ") + best.mode);
+  EQMESH_ASSIGN_OR_RETURN(Refinement best, RefineAllLevels(context));
   out.hierarchy = std::move(best.hierarchy);
   out.positions = std::move(best.positions);
   out.kinds = std::move(best.kinds);
