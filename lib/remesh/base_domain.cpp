@@ -6,11 +6,13 @@
 #include <array>
 #include <Eigen/Geometry>
 #include <cmath>
+#include <limits>
 #include <queue>
 
 #include <Eigen/Core>
 
 #include "mesh/mesh_topology.h"
+#include "mesh/triangle_bvh.h"
 #include "remesh/ring_flattening.h"
 
 namespace eqmesh {
@@ -25,6 +27,8 @@ constexpr double kMinNormalCos = 0.17;
 constexpr double kMinQuality = 0.08;
 // Quality floor in that division, so a degenerate fan stays finite.
 constexpr double kQualityFloor = 1e-3;
+// Cost of a collapse that would fold the base against the input: refused.
+constexpr double kFoldedCost = std::numeric_limits<double>::infinity();
 
 struct Ring {
   std::vector<uint32_t> verts;  // k_0..k_{d-1}, counter-clockwise around v
@@ -47,7 +51,7 @@ double Quality(const Vec3& a, const Vec3& b, const Vec3& c) {
 
 class Simplifier {
  public:
-  Simplifier(const Mesh& mesh, const std::vector<uint8_t>& is_boundary);
+  Simplifier(const Mesh& mesh, const TriangleBvh& bvh, const std::vector<uint8_t>& is_boundary);
   void Run(size_t target, const ProgressFn& progress);
   BaseDomain Extract() const;
 
@@ -67,6 +71,7 @@ class Simplifier {
   bool TryCollapse(uint32_t v, uint32_t u, const Ring& ring);
   bool TopologyAllows(uint32_t v, size_t p, const Ring& ring) const;
   bool GeometryAllows(uint32_t v, size_t p, const Ring& ring, const std::vector<Vec2>& z) const;
+  bool FacesAwayFromInput(const Vec3& a, const Vec3& b, const Vec3& c) const;
   void Apply(uint32_t v, size_t p, const Ring& ring, const std::vector<Vec2>& z);
   Vec2 ChartOf(uint32_t corner, uint32_t v, const Ring& ring, const std::vector<Vec2>& z) const;
   bool PlaceOnEdge(uint32_t x, uint32_t w1, uint32_t w2, double s, const std::vector<uint32_t>& new_faces);
@@ -76,6 +81,8 @@ class Simplifier {
                          const std::vector<uint32_t>& new_faces);
 
   const std::vector<Vec3>& pos_;
+  const TriangleBvh& bvh_;
+  const std::vector<Face>& input_faces_;
   const std::vector<uint8_t>& boundary_;
   std::vector<Face> faces_;
   std::vector<uint8_t> face_alive_;
@@ -90,8 +97,10 @@ class Simplifier {
     Vec3 to_a, to_b;             // 3D offsets of those corners from the target
   };
   mutable std::vector<FanTriangle> scratch_fan_;
+  mutable std::vector<Vec3> scratch_facing_;
   mutable std::vector<Vec2> scratch_z_, scratch_chart_;
-  mutable std::vector<Vec3> scratch_ring_pos_, scratch_items_;
+  mutable std::vector<Vec3> scratch_ring_pos_, scratch_items_, scratch_normals_;
+  std::vector<Vec3> normal_;  // area-weighted input vertex normals
   std::vector<uint32_t> loop_of_;
   std::vector<size_t> loop_size_;
   std::vector<std::vector<uint32_t>> bucket_;  // removed input vertices mapped into each face
@@ -100,8 +109,8 @@ class Simplifier {
   size_t alive_count_ = 0;
 };
 
-Simplifier::Simplifier(const Mesh& mesh, const std::vector<uint8_t>& is_boundary)
-    : pos_(mesh.positions), boundary_(is_boundary), faces_(mesh.faces) {
+Simplifier::Simplifier(const Mesh& mesh, const TriangleBvh& bvh, const std::vector<uint8_t>& is_boundary)
+    : pos_(mesh.positions), bvh_(bvh), input_faces_(mesh.faces), boundary_(is_boundary), faces_(mesh.faces) {
   const size_t n = pos_.size();
   face_alive_.assign(faces_.size(), 1);
   vfaces_.resize(n);
@@ -114,6 +123,11 @@ Simplifier::Simplifier(const Mesh& mesh, const std::vector<uint8_t>& is_boundary
   candidates_.resize(n);
   bucket_.resize(faces_.size());
   params_.resize(n);
+  normal_.assign(n, Vec3::Zero());
+  for (const Face& f : faces_) {
+    const Vec3 a = (pos_[f[1]] - pos_[f[0]]).cross(pos_[f[2]] - pos_[f[0]]);
+    for (uint32_t c : f) normal_[c] += a;
+  }
   InitLoops();
 }
 
@@ -212,6 +226,9 @@ double Simplifier::CollapseCost(size_t p, const Ring& ring, const std::vector<Ve
   }
   const std::vector<Vec2>& chart = scratch_chart_;
   const std::vector<Vec3>& items = scratch_items_;
+  const std::vector<Vec3>& normals = scratch_normals_;
+  std::vector<Vec3>& facing = scratch_facing_;
+  facing.assign(fan.size(), Vec3::Zero());
   const double q = std::max(worst_quality, kQualityFloor);
   const double scale = 1.0 / (q * q * q);
   const double worst_bound = bound / scale;
@@ -220,18 +237,27 @@ double Simplifier::CollapseCost(size_t p, const Ring& ring, const std::vector<Ve
     const Vec2 rel = chart[i] - z[p];
     double best = -1e300;
     Vec3 offset = Vec3::Zero();
-    for (const FanTriangle& t : fan) {
+    size_t home = 0;
+    for (size_t ti = 0; ti < fan.size(); ++ti) {
+      const FanTriangle& t = fan[ti];
       const Vec2 w = t.to_weights * rel;
       const double inside = std::min({1.0 - w[0] - w[1], w[0], w[1]});
       if (inside <= best) continue;
       best = inside;
+      home = ti;
       const Vec2 c = w.cwiseMax(0.0);
       const double s = std::max(1.0, c.sum());
       offset = (c[0] / s) * t.to_a + (c[1] / s) * t.to_b;
       if (inside >= 0.0) break;
     }
+    if (!fan.empty()) facing[home] += normals[i];
     worst = std::max(worst, (pu + offset - items[i]).squaredNorm());
     if (worst > worst_bound) break;  // already costlier than the bound: a lower bound is enough
+  }
+  // A fan triangle that faces away from the input vertices it would carry folds
+  // the base; every remesh level below it would inherit the fold.
+  for (size_t ti = 0; ti < fan.size(); ++ti) {
+    if (fan[ti].to_a.cross(fan[ti].to_b).dot(facing[ti]) < 0.0) return kFoldedCost;
   }
   return worst * scale;
 }
@@ -246,8 +272,10 @@ std::vector<std::pair<double, uint32_t>> Simplifier::Candidates(uint32_t v, cons
   // Chart position and 3D position of every input vertex mapped into the star.
   std::vector<Vec2>& chart = scratch_chart_;
   std::vector<Vec3>& items = scratch_items_;
+  std::vector<Vec3>& normals = scratch_normals_;
   chart.clear();
   items.clear();
+  normals.clear();
   for (uint32_t f : ring.faces) {
     const Face& t = faces_[f];
     const Vec2 c0 = ChartOf(t[0], v, ring, z), c1 = ChartOf(t[1], v, ring, z), c2 = ChartOf(t[2], v, ring, z);
@@ -255,16 +283,19 @@ std::vector<std::pair<double, uint32_t>> Simplifier::Candidates(uint32_t v, cons
       const std::array<double, 3>& b = params_[x].bary;
       chart.push_back(b[0] * c0 + b[1] * c1 + b[2] * c2);
       items.push_back(pos_[x]);
+      normals.push_back(normal_[x]);
     }
   }
   chart.push_back(Vec2::Zero());
   items.push_back(pos_[v]);
+  normals.push_back(normal_[v]);
   const size_t d = ring.verts.size();
   for (size_t p = 0; p < d; ++p) {
     // Boundary vertices collapse only along their boundary.
     if (boundary_[v] && p != 0 && p + 1 != d) continue;
     const double bound = exact || out.empty() ? 1e300 : out.front().first;
     const double cost = CollapseCost(p, ring, z, bound);
+    if (cost == kFoldedCost) continue;
     out.push_back({cost, ring.verts[p]});
     if (cost < out.front().first) std::swap(out.front(), out.back());
   }
@@ -337,8 +368,19 @@ bool Simplifier::GeometryAllows(uint32_t v, size_t p, const Ring& ring, const st
     if (lo > 0.0 && n_old.dot(n_new) < kMinNormalCos * lo * ln) return false;
     const double q = Quality(pos_[u], a, b);
     if (q < kMinQuality && q < worst_old) return false;
+    if (FacesAwayFromInput(pos_[u], a, b)) return false;
   }
   return true;
+}
+
+// The remesh's fold test (quality_checks.h) on a base triangle: it faces away
+// from the input at the closest point of its centroid. A folded base face
+// seeds folds and unconverged patches at every level below it.
+bool Simplifier::FacesAwayFromInput(const Vec3& a, const Vec3& b, const Vec3& c) const {
+  const ClosestPointResult cp = bvh_.ClosestPoint((a + b + c) / 3.0);
+  if (!cp.found()) return false;
+  const Face& g = input_faces_[cp.face];
+  return (pos_[g[1]] - pos_[g[0]]).cross(pos_[g[2]] - pos_[g[0]]).dot((b - a).cross(c - a)) < 0.0;
 }
 
 bool Simplifier::TryCollapse(uint32_t v, uint32_t u, const Ring& ring) {
@@ -575,7 +617,8 @@ StatusOr<BaseDomain> BuildBaseDomain(const Mesh& mesh, const std::vector<uint8_t
                                      const BaseDomainOptions& options) {
   if (mesh.faces.empty()) return InvalidMesh("no faces to simplify");
   if (is_boundary.size() != mesh.positions.size()) return InternalError("boundary flags size mismatch");
-  Simplifier s(mesh, is_boundary);
+  EQMESH_ASSIGN_OR_RETURN(TriangleBvh bvh, TriangleBvh::Build(mesh));
+  Simplifier s(mesh, bvh, is_boundary);
   s.Run(options.target_vertices, options.progress);
   BaseDomain base = s.Extract();
   for (const ParamPoint& pp : base.params) {

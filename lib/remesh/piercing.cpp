@@ -28,6 +28,17 @@ constexpr size_t kMaxChartFaces = 4096;
 // (dragon_vrip, 1.8M new vertices: over 10 CPU minutes in one level). A miss
 // falls back to the closest input point.
 constexpr size_t kMaxFineForwardChartFaces = 256;
+// Levels with at least this many faces per input face are refined in 3D (see
+// fine_). Measured on the bench meshes: 0.5 (the level after the last one
+// coarser than the input's half) folds 3x fewer faces than 1; 0.15 lost up to
+// 20 dB where coarse levels still need the charts' protection on thin parts.
+constexpr double kFineLevelFaceRatio = 0.5;
+// Placement repair: sweeps over the suspect vertices, hits tried per vertex,
+// and how far from its edge's 3D middle a vertex may sit (0.6: within the
+// middle 80 % of the edge).
+constexpr int kRepairPasses = 3;
+constexpr size_t kRepairCandidates = 8;
+constexpr double kMaxLopsidedness = 0.6;
 
 using Vec3d = Eigen::Vector3d;
 
@@ -69,7 +80,7 @@ class LevelRefiner {
   LevelRefiner(const SemiRegularHierarchy& h, int j, const InputSurface& s,
                std::vector<Vec3>* positions, std::vector<ParamPoint>* params)
       : h_(h), j_(j), s_(s), dom_(h, j), pos_(*positions), params_(*params) {
-    fine_ = dom_.faces().size() >= s.mesh->faces.size();
+    fine_ = static_cast<double>(dom_.faces().size()) >= kFineLevelFaceRatio * static_cast<double>(s.mesh->faces.size());
   }
 
   void Run(std::vector<Vec3>* positions, std::vector<VertexKind>* kinds, LevelStats* stats);
@@ -80,6 +91,9 @@ class LevelRefiner {
   EdgeChoice PierceEdge(uint32_t k, Chart* chart) const;
   std::vector<EdgeChoice> NormalCandidates(uint32_t k, Chart* chart, size_t limit) const;
   EdgeChoice MidpointChoice(uint32_t k) const;
+  bool SurfaceParam(uint32_t k, const Vec3& x, uint32_t face, const std::array<double, 3>& bary, Chart* chart,
+                    Vec3d* u) const;
+  bool RelaxedChoice(uint32_t k, Chart* chart, EdgeChoice* out) const;
   EdgeChoice BoundaryPoint(uint32_t k) const;
   bool InKite(const Vec3d& u, int slot) const;
   Vec3d DiamondParam(uint32_t k, const Vec3& x) const;
@@ -89,6 +103,24 @@ class LevelRefiner {
   Vec3d EdgePointIn(uint32_t f, int i) const;
   bool ChildrenValid(uint32_t f) const;
   void DemoteInvalidFaces();
+  struct PlacementScore {
+    size_t folds = 0;
+    bool lopsided = false;
+    double error = 0.0;
+    bool operator<(const PlacementScore& o) const {
+      if (folds != o.folds) return folds < o.folds;
+      if (lopsided != o.lopsided) return !lopsided;
+      return error < o.error;
+    }
+  };
+  void RepairPlacements();
+  bool TryAlternatives(uint32_t k, const PlacementScore& before, Chart* chart);
+  double Lopsidedness(uint32_t k) const;
+  PlacementScore ScorePlacement(uint32_t k) const;
+  const Vec3& FinePosition(uint32_t v) const;
+  bool Folded(uint32_t child, double* error = nullptr) const;
+  std::array<uint32_t, 6> FacesAround(uint32_t k) const;
+  size_t FoldsAround(uint32_t k, double* error = nullptr) const;
   void ForwardMapDemoted();
   std::array<std::array<Vec3d, 3>, 4> Children(uint32_t f) const;
   ParamPoint Relocate(uint32_t f, uint32_t x) const;
@@ -107,7 +139,7 @@ class LevelRefiner {
   std::vector<LocalFrame> frames_;
   std::vector<EdgeChoice> choice_;
   std::vector<ParamPoint> params_out_;
-  // A level with at least as many faces as the input: hits are validated and
+  // A level with at least kFineLevelFaceRatio faces per input face: hits are validated and
   // demoted midpoints placed in 3D (DiamondParam, FineMidpoint) instead of
   // through charts.
   bool fine_ = false;
@@ -150,25 +182,61 @@ std::vector<EdgeChoice> LevelRefiner::NormalCandidates(uint32_t k, Chart* chart,
     EdgeChoice c;
     c.position = p + (hit.t - reach) * n;
     c.kind = VertexKind::kNormal;
-    if (fine_) {
-      c.u = DiamondParam(k, c.position);
-    } else {
-      const Face& tri = s_.mesh->faces[hit.face];
-      c.u = Vec3d::Zero();
-      bool mapped = true;
-      Vec2 c2[3];
-      for (int i = 0; i < 3 && mapped; ++i) {
-        Vec3d ui;
-        mapped = chart->Map(params_[tri[i]], &ui, kMaxChartFaces);
-        c.u += hit.barycentric[i] * ui;
-        c2[i] = ToReference2d(ui);
-      }
-      if (!mapped || !ImageIsConsistent(c2)) continue;
+    if (SurfaceParam(k, c.position, hit.face, hit.barycentric, chart, &c.u) && InKite(c.u, sides.left_slot)) {
+      out.push_back(c);
     }
-    if (InKite(c.u, sides.left_slot)) out.push_back(c);
   }
   return out;
 }
+
+// Parameter (left face of edge k's chart, reset by the caller) of the surface
+// point x = input triangle `face` at `bary`; false where no chart holds it.
+bool LevelRefiner::SurfaceParam(uint32_t k, const Vec3& x, uint32_t face, const std::array<double, 3>& bary,
+                                Chart* chart, Vec3d* u) const {
+  if (fine_) {
+    *u = DiamondParam(k, x);
+    return true;
+  }
+  const Face& tri = s_.mesh->faces[face];
+  *u = Vec3d::Zero();
+  Vec2 c2[3];
+  for (int i = 0; i < 3; ++i) {
+    Vec3d ui;
+    if (!chart->Map(params_[tri[i]], &ui, kMaxChartFaces)) return false;
+    *u += bary[i] * ui;
+    c2[i] = ToReference2d(ui);
+  }
+  return ImageIsConsistent(c2);
+}
+
+// Untangling candidate for a repair: the surface point closest to the average
+// of the vertex's six level-(j+1) neighbours (non-normal).
+bool LevelRefiner::RelaxedChoice(uint32_t k, Chart* chart, EdgeChoice* out) const {
+  const uint32_t self = static_cast<uint32_t>(pos_.size()) + k;
+  Vec3 sum = Vec3::Zero();
+  int count = 0;
+  for (uint32_t f : FacesAround(k)) {
+    for (uint32_t v : h_.Faces(j_ + 1)[f]) {
+      if (v == self) continue;
+      sum += FinePosition(v);
+      ++count;
+    }
+  }
+  // Same-facing input triangles only, so a thin part's other side is never taken.
+  const Vec3& n = frames_[k].normal;
+  const ClosestPointResult cp = s_.bvh->ClosestPointFiltered(sum / count, [&](uint32_t f) {
+    const Face& g = s_.mesh->faces[f];
+    const std::vector<Vec3>& x = s_.mesh->positions;
+    return (x[g[1]] - x[g[0]]).cross(x[g[2]] - x[g[0]]).dot(n) > 0.0;
+  });
+  if (!cp.found()) return false;
+  chart->Reset(dom_.Sides(k).left);
+  out->position = cp.point;
+  out->kind = VertexKind::kNonNormal;
+  out->needs_forward = false;
+  return SurfaceParam(k, cp.point, cp.face, cp.barycentric, chart, &out->u) && InKite(out->u, dom_.Sides(k).left_slot);
+}
+
 
 EdgeChoice LevelRefiner::MidpointChoice(uint32_t k) const {
   EdgeChoice out;
@@ -455,6 +523,7 @@ void LevelRefiner::Run(std::vector<Vec3>* positions, std::vector<VertexKind>* ki
   });
   DemoteInvalidFaces();
   ForwardMapDemoted();
+  RepairPlacements();
   for (const EdgeChoice& c : choice_) {
     positions->push_back(c.position);
     kinds->push_back(c.kind);
@@ -466,6 +535,126 @@ void LevelRefiner::Run(std::vector<Vec3>* positions, std::vector<VertexKind>* ki
   UpdateParams(&next);
   stats->rms_error = RmsError(*positions, next);
   params_out_ = std::move(next);
+}
+
+const Vec3& LevelRefiner::FinePosition(uint32_t v) const {
+  return v < pos_.size() ? pos_[v] : choice_[v - pos_.size()].position;
+}
+
+// A level-(j+1) face folds when it faces away from the input at the closest
+// point of its centroid (the remesh check, quality_checks.h); degenerate counts.
+// Also returns the face's area times its centroid's squared distance.
+bool LevelRefiner::Folded(uint32_t child, double* error) const {
+  const Face& t = h_.Faces(j_ + 1)[child];
+  const Vec3& a = FinePosition(t[0]);
+  const Vec3& b = FinePosition(t[1]);
+  const Vec3& c = FinePosition(t[2]);
+  const Vec3 n = (b - a).cross(c - a);
+  if (!(n.squaredNorm() > 0.0)) return true;
+  const ClosestPointResult cp = s_.bvh->ClosestPoint((a + b + c) / 3.0);
+  if (!cp.found()) return false;
+  if (error) *error += n.norm() * cp.squared_distance;
+  const Face& g = s_.mesh->faces[cp.face];
+  const std::vector<Vec3>& x = s_.mesh->positions;
+  return (x[g[1]] - x[g[0]]).cross(x[g[2]] - x[g[0]]).dot(n) < 0.0;
+}
+
+// The six level-(j+1) faces around odd vertex k (three children of each side).
+std::array<uint32_t, 6> LevelRefiner::FacesAround(uint32_t k) const {
+  const EdgeSides& e = dom_.Sides(k);
+  const uint32_t l = 4 * e.left, r = 4 * e.right;
+  return {l + e.left_slot, l + (e.left_slot + 1) % 3, l + 3, r + e.right_slot, r + (e.right_slot + 1) % 3, r + 3};
+}
+
+size_t LevelRefiner::FoldsAround(uint32_t k, double* error) const {
+  size_t n = 0;
+  for (uint32_t f : FacesAround(k)) n += Folded(f, error);
+  return n;
+}
+
+// How far odd vertex k sits from the middle of its edge in 3D: 0 at the 3D
+// midpoint, 1 at an endpoint.
+double LevelRefiner::Lopsidedness(uint32_t k) const {
+  const Edge& e = h_.OddEdge(j_, k);
+  const Vec3& m = choice_[k].position;
+  const double da = (m - pos_[e[0]]).norm(), db = (m - pos_[e[1]]).norm();
+  return da + db > 0.0 ? std::abs(da - db) / (da + db) : 1.0;
+}
+
+// Placement score of odd vertex k, smaller is better: folded faces around it
+// first, then whether it sits near an end of its edge, then the faces' error.
+LevelRefiner::PlacementScore LevelRefiner::ScorePlacement(uint32_t k) const {
+  PlacementScore s;
+  s.folds = FoldsAround(k, &s.error);
+  s.lopsided = Lopsidedness(k) > kMaxLopsidedness;
+  return s;
+}
+
+// Folds at a level multiply by four at every finer one (their children are
+// pierced from folded predictions), and so does a vertex placed next to an end
+// of its edge: where the parameterization is compressed the edges around it
+// then never shrink (armadillo claws: 0.02 of the diagonal from level 2 to 5).
+// So each level is cleaned before the next: an odd vertex of a folded face, or
+// one within kMaxLopsidedness of an end of its edge, tries its other admissible
+// hits, the parametric midpoint and the surface point closest to its
+// neighbours' average, and keeps the best ScorePlacement. Departure from Guskov
+// et al., who take the hit closest to the prediction.
+void LevelRefiner::RepairPlacements() {
+  const size_t nf = dom_.faces().size();
+  std::vector<uint8_t> suspect(choice_.size(), 0);
+  ParallelFor(nf, [&](size_t begin, size_t end, size_t) {
+    for (size_t f = begin; f < end; ++f) {
+      for (uint32_t c = 0; c < 4; ++c) {
+        if (!Folded(static_cast<uint32_t>(4 * f + c))) continue;
+        for (int i = 0; i < 3; ++i) suspect[dom_.EdgeOf(static_cast<uint32_t>(f), i)] = 1;
+      }
+    }
+  });
+  for (uint32_t k = 0; k < choice_.size(); ++k) {
+    if (Lopsidedness(k) > kMaxLopsidedness) suspect[k] = 1;
+  }
+  Chart chart(dom_);
+  for (int pass = 0; pass < kRepairPasses; ++pass) {
+    bool changed = false;
+    for (uint32_t k = 0; k < choice_.size(); ++k) {
+      if (!suspect[k] || dom_.Sides(k).right == kNoNeighbour) continue;
+      suspect[k] = 0;
+      const PlacementScore before = ScorePlacement(k);
+      if (before.folds == 0 && !before.lopsided) continue;
+      if (TryAlternatives(k, before, &chart)) {
+        changed = true;
+        // The neighbours' faces changed too: look at them again.
+        for (uint32_t f : {dom_.Sides(k).left, dom_.Sides(k).right}) {
+          for (int i = 0; i < 3; ++i) suspect[dom_.EdgeOf(f, i)] = 1;
+        }
+      }
+    }
+    if (!changed) break;
+  }
+}
+
+bool LevelRefiner::TryAlternatives(uint32_t k, const PlacementScore& before, Chart* chart) {
+  std::vector<EdgeChoice> options = NormalCandidates(k, chart, kRepairCandidates);
+  EdgeChoice mid = MidpointChoice(k);
+  mid.position = fine_ ? FineMidpoint(k) : ForwardMap(dom_.Sides(k).left, mid.u, predicted_[k], chart);
+  mid.needs_forward = false;
+  options.push_back(mid);
+  EdgeChoice relaxed;
+  if (RelaxedChoice(k, chart, &relaxed)) options.push_back(relaxed);
+  const EdgeChoice current = choice_[k];
+  EdgeChoice best = current;
+  PlacementScore best_score = before;
+  for (const EdgeChoice& o : options) {
+    choice_[k] = o;
+    if (!ChildrenValid(dom_.Sides(k).left) || !ChildrenValid(dom_.Sides(k).right)) continue;
+    const PlacementScore score = ScorePlacement(k);
+    if (score < best_score) {
+      best_score = score;
+      best = o;
+    }
+  }
+  choice_[k] = best;
+  return best.position != current.position;
 }
 
 void LevelRefiner::UpdateParams(std::vector<ParamPoint>* next) const {
