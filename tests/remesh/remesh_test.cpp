@@ -79,18 +79,21 @@ TEST(Remesh, BumpedDiscKeepsItsBoundaryOnTheInputBoundary) {
   EXPECT_GE(run.report.normal_fraction, 0.85);
 }
 
+// At the default (measured) level count, where the normal-share bar
+// applies: the coarsest levels of an 8-vertex base are mostly parametric.
 void CheckSharedMesh(const std::string& name, int64_t euler, double min_normal) {
   if (!testing::HaveSharedMeshes()) GTEST_SKIP() << "shared meshes absent";
   auto input = ReadMesh(testing::SharedPath("meshes/small/" + name));
   ASSERT_TRUE(input.ok()) << input.status().ToString();
-  const RemeshRun run = RemeshOrDie(*input, 3, -1);
+  const RemeshRun run = RemeshOrDie(*input, -1, -1);
+  EXPECT_GE(run.report.levels, 4) << name;
   EXPECT_GE(run.report.normal_fraction, min_normal) << name;
   EXPECT_LE(run.report.base_vertices, std::max<size_t>(8, input->positions.size() * 3 / 1000 + 1)) << name;
   ExpectClosedGenus(run.mesh, euler);
 }
 
-TEST(Remesh, BunnyNpmClosedGenusZero) { CheckSharedMesh("bunny_npm.obj", 2, 0.8); }
-TEST(Remesh, RockerArmClosedGenusOne) { CheckSharedMesh("rocker-arm.off", 0, 0.8); }
+TEST(Remesh, BunnyNpmClosedGenusZero) { CheckSharedMesh("bunny_npm.obj", 2, 0.9); }
+TEST(Remesh, RockerArmClosedGenusOne) { CheckSharedMesh("rocker-arm.off", 0, 0.9); }
 
 }  // namespace
 }  // namespace eqmesh
