@@ -8,6 +8,7 @@
 
 #include "remesh/level_domain.h"
 #include "remesh/parallel_for.h"
+#include "remesh/quality_checks.h"
 #include "wavelet/butterfly.h"
 
 namespace eqmesh {
@@ -234,7 +235,15 @@ bool LevelRefiner::RelaxedChoice(uint32_t k, Chart* chart, EdgeChoice* out) cons
   out->position = cp.point;
   out->kind = VertexKind::kNonNormal;
   out->needs_forward = false;
-  return SurfaceParam(k, cp.point, cp.face, cp.barycentric, chart, &out->u) && InKite(out->u, dom_.Sides(k).left_slot);
+  if (!SurfaceParam(k, cp.point, cp.face, cp.barycentric, chart, &out->u)) return false;
+  // On 3D-refined levels the diamond is the 3D one and cannot reach a thin
+  // part's other side, so the whole diamond is admissible there.
+  if (fine_) {
+    const int a = dom_.Sides(k).left_slot, b = (a + 1) % 3, c = (a + 2) % 3;
+    const Vec3d& u = out->u;
+    return std::min(u[a], u[b]) >= std::max(0.0, -u[c]);
+  }
+  return InKite(out->u, dom_.Sides(k).left_slot);
 }
 
 
@@ -549,14 +558,8 @@ bool LevelRefiner::Folded(uint32_t child, double* error) const {
   const Vec3& a = FinePosition(t[0]);
   const Vec3& b = FinePosition(t[1]);
   const Vec3& c = FinePosition(t[2]);
-  const Vec3 n = (b - a).cross(c - a);
-  if (!(n.squaredNorm() > 0.0)) return true;
-  const ClosestPointResult cp = s_.bvh->ClosestPoint((a + b + c) / 3.0);
-  if (!cp.found()) return false;
-  if (error) *error += n.norm() * cp.squared_distance;
-  const Face& g = s_.mesh->faces[cp.face];
-  const std::vector<Vec3>& x = s_.mesh->positions;
-  return (x[g[1]] - x[g[0]]).cross(x[g[2]] - x[g[0]]).dot(n) < 0.0;
+  if (!((b - a).cross(c - a).squaredNorm() > 0.0)) return true;
+  return FacesAwayFromInput(*s_.bvh, *s_.mesh, a, b, c, error);
 }
 
 // The six level-(j+1) faces around odd vertex k (three children of each side).

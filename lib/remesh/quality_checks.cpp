@@ -10,6 +10,17 @@
 
 namespace eqmesh {
 
+bool FacesAwayFromInput(const TriangleBvh& bvh, const Mesh& input, const Vec3& a, const Vec3& b, const Vec3& c,
+                        double* error) {
+  const Vec3 n = (b - a).cross(c - a);
+  const ClosestPointResult cp = bvh.ClosestPoint((a + b + c) / 3.0);
+  if (!cp.found()) return false;
+  if (error) *error += n.norm() * cp.squared_distance;
+  const Face& g = input.faces[cp.face];
+  const Vec3 m = (input.positions[g[1]] - input.positions[g[0]]).cross(input.positions[g[2]] - input.positions[g[0]]);
+  return m.dot(n) < 0.0;
+}
+
 StatusOr<FoldReport> CountFoldsAgainstInput(const Mesh& remesh, const Mesh& input) {
   EQMESH_ASSIGN_OR_RETURN(TriangleBvh bvh, TriangleBvh::Build(input));
   const double diag = BoundingBoxDiagonal(input);
@@ -29,11 +40,7 @@ StatusOr<FoldReport> CountFoldsAgainstInput(const Mesh& remesh, const Mesh& inpu
         ++local.degenerate_faces;
         continue;
       }
-      const ClosestPointResult cp = bvh.ClosestPoint((a + b + c) / 3.0);
-      if (!cp.found()) continue;
-      const Face& g = input.faces[cp.face];
-      const Vec3 m = (input.positions[g[1]] - input.positions[g[0]]).cross(input.positions[g[2]] - input.positions[g[0]]);
-      if (m.dot(n) < 0.0) ++local.flipped_faces;
+      if (FacesAwayFromInput(bvh, input, a, b, c)) ++local.flipped_faces;
     }
     std::lock_guard<std::mutex> guard(lock);
     total.flipped_faces += local.flipped_faces;

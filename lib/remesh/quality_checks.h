@@ -17,4 +17,13 @@ struct FoldReport {
 
 StatusOr<FoldReport> CountFoldsAgainstInput(const Mesh& remesh, const Mesh& input);
 
+class TriangleBvh;
+
+// The fold test behind CountFoldsAgainstInput, for one triangle (a, b, c): its
+// normal is opposed to that of the input face closest to its centroid. Adds
+// twice the triangle's area times that squared distance to *error when given.
+// Degenerate triangles are not folded (CountFoldsAgainstInput counts them apart).
+bool FacesAwayFromInput(const TriangleBvh& bvh, const Mesh& input, const Vec3& a, const Vec3& b, const Vec3& c,
+                        double* error = nullptr);
+
 }  // namespace eqmesh

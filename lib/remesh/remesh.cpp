@@ -13,6 +13,7 @@
 #include "remesh/base_domain.h"
 #include "remesh/input_check.h"
 #include "remesh/piercing.h"
+#include "remesh/untangle.h"
 
 namespace eqmesh {
 namespace {
@@ -245,6 +246,13 @@ StatusOr<SemiRegularMesh> Remesh(const Mesh& input, const RemeshOptions& options
   const double diagonal = BoundingBoxDiagonal(prep.surface);
   const RefineContext context{base, prep.surface, surface, options, diagonal, prep.input_vertices};
   EQMESH_ASSIGN_OR_RETURN(Refinement best, RefineAllLevels(context));
+  const size_t untangled = UntangleFinestLevel(best.hierarchy, surface, &best.positions, &best.kinds);
+  if (untangled > 0 && !best.normal_fraction_per_level.empty()) {
+    best.normal -= untangled;
+    best.non_normal += untangled;
+    const size_t finest = best.hierarchy.NumOddVertices(best.levels - 1);
+    best.normal_fraction_per_level.back() -= static_cast<double>(untangled) / static_cast<double>(finest);
+  }
   out.hierarchy = std::move(best.hierarchy);
   out.positions = std::move(best.positions);
   out.kinds = std::move(best.kinds);
