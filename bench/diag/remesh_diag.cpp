@@ -205,6 +205,23 @@ int main(int argc, char** argv) {
       ++fi_idx;
     }
   }
+  // Folded faces, clustered.
+  {
+    std::vector<Vec3> fc;
+    std::vector<int> cnt;
+    for (size_t f = 0; f < fin.size(); ++f) {
+      if (!fin[f].folded) continue;
+      const Face& face = h.Faces(L)[f];
+      const Vec3 c = (srm->positions[face[0]] + srm->positions[face[1]] + srm->positions[face[2]]) / 3.0;
+      size_t k = 0;
+      for (; k < fc.size(); ++k) if ((fc[k] - c).norm() < 0.01 * diag) break;
+      if (k == fc.size()) { fc.push_back(c); cnt.push_back(0); }
+      ++cnt[k];
+    }
+    std::printf("  %zu fold clusters:", fc.size());
+    for (size_t k = 0; k < fc.size() && k < 40; ++k) std::printf(" %d@(%.3g,%.3g,%.3g)", cnt[k], fc[k][0], fc[k][1], fc[k][2]);
+    std::printf("\n");
+  }
   // Worst faces with their ancestry.
   const char* kind_names = "BNnb";
   std::vector<Vec3> centres;
