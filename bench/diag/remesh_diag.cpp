@@ -1,14 +1,19 @@
 // Remesh diagnosis (developer tool, not part of the product build): where does a
 // remesh's error sit, and at which level did it appear?
 //
-//   remesh_diag INPUT REMESH.srm [--png OUT.png] [--zoom N] [--top K]
+//   remesh_diag INPUT REMESH.srm [--png OUT.png] [--zoom N] [--top K] [--level L]
+//               [--at X,Y,Z [--size S] [--strip OUT.png] [--view DX,DY,DZ] [--bad E]]
 //
 // Per finest face: the largest distance of its centroid and edge midpoints to the
 // input (what Metro's remesh->input direction sees), its area, and whether it is
 // folded against the input (normal opposed to the closest input face's). Prints
 // how the squared error concentrates, the worst faces with their ancestors' errors
 // level by level and their corners' kinds; --png renders six axis views coloured
-// by error (folds magenta), --zoom N adds views around the N worst clusters.
+// by error (folds magenta), --zoom N adds views around the N worst clusters;
+// --strip renders the neighbourhood of --at (S diagonals wide) at every level
+// and the input, --bad E showing only faces whose error exceeds E diagonals over
+// the input in grey.
+// Build: cmake --build build --target remesh_diag.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -167,7 +172,6 @@ int main(int argc, char** argv) {
   for (int l = 0; l <= L; ++l) {
     const auto& faces = h.Faces(l);
     per_level[l].resize(faces.size());
-#pragma omp parallel for schedule(dynamic, 4096)
     for (long f = 0; f < static_cast<long>(faces.size()); ++f) {
       per_level[l][f] = Measure(*bvh, *input, srm->positions[faces[f][0]], srm->positions[faces[f][1]],
                                 srm->positions[faces[f][2]]);
@@ -193,14 +197,14 @@ int main(int argc, char** argv) {
     size_t fo = 0;
     for (const FaceInfo& fi : per_level[l]) { t += fi.err * fi.err * fi.area; a += fi.area; fo += fi.folded; }
     std::printf("  level %d: %8zu faces, folded %6zu (%.3f%%), est %.2f dB\n", l, per_level[l].size(), fo,
-                100.0 * fo / per_level[l].size(), 20 * std::log10(diag / std::sqrt(t / a)));
+                100.0 * static_cast<double>(fo) / static_cast<double>(per_level[l].size()), 20 * std::log10(diag / std::sqrt(t / a)));
   }
   double acc = 0;
   const double fracs[] = {0.0001, 0.001, 0.01, 0.1};
   size_t fi_idx = 0;
   for (size_t i = 0; i < order.size() && fi_idx < 4; ++i) {
     acc += fin[order[i]].err * fin[order[i]].err * fin[order[i]].area;
-    if (i + 1 >= fracs[fi_idx] * order.size()) {
+    if (static_cast<double>(i + 1) >= fracs[fi_idx] * static_cast<double>(order.size())) {
       std::printf("  worst %.2f%% of faces carry %.1f%% of the squared error\n", 100 * fracs[fi_idx], 100 * acc / total);
       ++fi_idx;
     }

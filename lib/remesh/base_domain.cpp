@@ -13,6 +13,7 @@
 
 #include "mesh/mesh_topology.h"
 #include "mesh/triangle_bvh.h"
+#include "remesh/parallel_for.h"
 #include "remesh/quality_checks.h"
 #include "remesh/ring_flattening.h"
 
@@ -37,6 +38,18 @@ struct Ring {
   std::vector<uint32_t> verts;  // k_0..k_{d-1}, counter-clockwise around v
   std::vector<uint32_t> faces;  // faces[m] = (v, k_m, k_{m+1}) up to rotation
   bool closed = false;
+};
+
+// Buffers of Candidates / CollapseCost, reused because they run once per queued
+// vertex and dominate the simplification's time; one per thread.
+struct FanTriangle {
+  Eigen::Matrix2d to_weights;  // chart offset from the collapse target -> weights of the other corners
+  Vec3 to_a, to_b;             // 3D offsets of those corners from the target
+};
+struct CostScratch {
+  std::vector<FanTriangle> fan;
+  std::vector<Vec3> facing, ring_pos, items, normals;
+  std::vector<Vec2> z, chart;
 };
 
 struct QueueEntry {
@@ -64,11 +77,15 @@ class Simplifier {
   std::vector<uint32_t> Neighbours(uint32_t v) const;
   // Collapse targets of v by cost. With `exact` false only the first cost is
   // exact and the others are lower bounds above it (enough to rank the queue).
-  std::vector<std::pair<double, uint32_t>> Candidates(uint32_t v, const Ring& ring, bool exact) const;
+  std::vector<std::pair<double, uint32_t>> Candidates(uint32_t v, const Ring& ring, bool exact,
+                                                      CostScratch* scratch) const;
+  void EnqueueAll();
   // Cost of collapsing the star's centre into ring vertex p; reads the star's
-  // input vertices from scratch_chart_ / scratch_items_ (Candidates fills them).
+  // input vertices from the scratch Candidates filled.
   // Stops early, returning a lower bound, once the cost exceeds `bound`.
-  double CollapseCost(size_t p, const Ring& ring, const std::vector<Vec2>& z, double bound) const;
+  // worst_quality: of the fan's triangles (the caller ranks candidates by it).
+  double CollapseCost(size_t p, const Ring& ring, double worst_quality, double bound,
+                      CostScratch* scratch) const;
   void Enqueue(uint32_t v);
 
   bool TryCollapse(uint32_t v, uint32_t u, const Ring& ring);
@@ -93,16 +110,7 @@ class Simplifier {
   std::vector<uint8_t> alive_;
   std::vector<uint32_t> stamp_;
   std::vector<std::vector<std::pair<double, uint32_t>>> candidates_;  // of the queued entry
-  // Scratch buffers of Candidates / CollapseCost (reused: they run once per
-  // queued vertex and dominate the simplification's time).
-  struct FanTriangle {
-    Eigen::Matrix2d to_weights;  // chart offset from the collapse target -> weights of the other corners
-    Vec3 to_a, to_b;             // 3D offsets of those corners from the target
-  };
-  mutable std::vector<FanTriangle> scratch_fan_;
-  mutable std::vector<Vec3> scratch_facing_;
-  mutable std::vector<Vec2> scratch_z_, scratch_chart_;
-  mutable std::vector<Vec3> scratch_ring_pos_, scratch_items_, scratch_normals_;
+  CostScratch scratch_;  // for the sequential evaluations
   std::vector<Vec3> normal_;  // area-weighted input vertex normals
   std::vector<uint32_t> loop_of_;
   std::vector<size_t> loop_size_;
@@ -208,13 +216,14 @@ std::vector<uint32_t> Simplifier::Neighbours(uint32_t v) const {
 // surface anisotropically. The power 3 was measured on the bench meshes (2 and 3
 // both keep every remesh above 84 dB, 3 gave fewer folds and more normal
 // vertices; error alone left slivers along ears and legs).
-double Simplifier::CollapseCost(size_t p, const Ring& ring, const std::vector<Vec2>& z, double bound) const {
+double Simplifier::CollapseCost(size_t p, const Ring& ring, double worst_quality, double bound,
+                                CostScratch* scratch) const {
+  const std::vector<Vec2>& z = scratch->z;
   const size_t d = ring.verts.size();
   const size_t wedges = ring.closed ? d : d - 1;
   const Vec3& pu = pos_[ring.verts[p]];
-  std::vector<FanTriangle>& fan = scratch_fan_;
+  std::vector<FanTriangle>& fan = scratch->fan;
   fan.clear();
-  double worst_quality = 1.0;
   for (size_t m = 0; m < wedges; ++m) {
     const size_t m1 = (m + 1) % d;
     if (m == p || m1 == p) continue;
@@ -225,12 +234,11 @@ double Simplifier::CollapseCost(size_t p, const Ring& ring, const std::vector<Ve
     const Vec3& pa = pos_[ring.verts[m]];
     const Vec3& pb = pos_[ring.verts[m1]];
     fan.push_back({e.inverse(), pa - pu, pb - pu});
-    worst_quality = std::min(worst_quality, Quality(pu, pa, pb));
   }
-  const std::vector<Vec2>& chart = scratch_chart_;
-  const std::vector<Vec3>& items = scratch_items_;
-  const std::vector<Vec3>& normals = scratch_normals_;
-  std::vector<Vec3>& facing = scratch_facing_;
+  const std::vector<Vec2>& chart = scratch->chart;
+  const std::vector<Vec3>& items = scratch->items;
+  const std::vector<Vec3>& normals = scratch->normals;
+  std::vector<Vec3>& facing = scratch->facing;
   facing.assign(fan.size(), Vec3::Zero());
   const double q = std::max(worst_quality, kQualityFloor);
   const double scale = 1.0 / (q * q * q);
@@ -265,39 +273,58 @@ double Simplifier::CollapseCost(size_t p, const Ring& ring, const std::vector<Ve
   return worst * scale;
 }
 
-std::vector<std::pair<double, uint32_t>> Simplifier::Candidates(uint32_t v, const Ring& ring, bool exact) const {
+std::vector<std::pair<double, uint32_t>> Simplifier::Candidates(uint32_t v, const Ring& ring, bool exact,
+                                                                CostScratch* scratch) const {
   std::vector<std::pair<double, uint32_t>> out;
-  std::vector<Vec3>& ring_pos = scratch_ring_pos_;
+  std::vector<Vec3>& ring_pos = scratch->ring_pos;
   ring_pos.clear();
   for (uint32_t k : ring.verts) ring_pos.push_back(pos_[k]);
-  std::vector<Vec2>& z = scratch_z_;
+  std::vector<Vec2>& z = scratch->z;
   if (!FlattenRing(pos_[v], ring_pos, ring.closed, &z)) return out;
   // Chart position and 3D position of every input vertex mapped into the star.
-  std::vector<Vec2>& chart = scratch_chart_;
-  std::vector<Vec3>& items = scratch_items_;
-  std::vector<Vec3>& normals = scratch_normals_;
-  chart.clear();
-  items.clear();
-  normals.clear();
-  for (uint32_t f : ring.faces) {
-    const Face& t = faces_[f];
-    const Vec2 c0 = ChartOf(t[0], v, ring, z), c1 = ChartOf(t[1], v, ring, z), c2 = ChartOf(t[2], v, ring, z);
-    for (uint32_t x : bucket_[f]) {
+  std::vector<Vec2>& chart = scratch->chart;
+  std::vector<Vec3>& items = scratch->items;
+  std::vector<Vec3>& normals = scratch->normals;
+  // v first: it moves the most, so its error is usually the largest and the
+  // early exit of CollapseCost comes soonest.
+  chart.assign(1, Vec2::Zero());
+  items.assign(1, pos_[v]);
+  normals.assign(1, normal_[v]);
+  const size_t d = ring.verts.size();
+  for (size_t m = 0; m < ring.faces.size(); ++m) {
+    // faces[m] = (v, k_m, k_{m+1}) up to rotation.
+    const Face& t = faces_[ring.faces[m]];
+    const uint32_t km = ring.verts[m];
+    const Vec2& zm = z[m];
+    const Vec2& zm1 = z[(m + 1) % d];
+    auto corner = [&](uint32_t c) { return c == v ? Vec2(Vec2::Zero()) : (c == km ? zm : zm1); };
+    const Vec2 c0 = corner(t[0]), c1 = corner(t[1]), c2 = corner(t[2]);
+    for (uint32_t x : bucket_[ring.faces[m]]) {
       const std::array<double, 3>& b = params_[x].bary;
       chart.push_back(b[0] * c0 + b[1] * c1 + b[2] * c2);
       items.push_back(pos_[x]);
       normals.push_back(normal_[x]);
     }
   }
-  chart.push_back(Vec2::Zero());
-  items.push_back(pos_[v]);
-  normals.push_back(normal_[v]);
-  const size_t d = ring.verts.size();
+  const size_t wedges = ring.closed ? d : d - 1;
+  // Best-shaped fans first: their cost is usually the lowest, which makes the
+  // early-exit bound of the others tight.
+  std::vector<std::pair<double, size_t>> order;
   for (size_t p = 0; p < d; ++p) {
     // Boundary vertices collapse only along their boundary.
     if (boundary_[v] && p != 0 && p + 1 != d) continue;
+    double worst = 1.0;
+    for (size_t m = 0; m < wedges; ++m) {
+      const size_t m1 = (m + 1) % d;
+      if (m == p || m1 == p) continue;
+      worst = std::min(worst, Quality(pos_[ring.verts[p]], pos_[ring.verts[m]], pos_[ring.verts[m1]]));
+    }
+    order.push_back({-worst, p});
+  }
+  std::sort(order.begin(), order.end());
+  for (const auto& [neg_quality, p] : order) {
     const double bound = exact || out.empty() ? 1e300 : out.front().first;
-    const double cost = CollapseCost(p, ring, z, bound);
+    const double cost = CollapseCost(p, ring, -neg_quality, bound, scratch);
     if (cost == kFoldedCost) continue;
     out.push_back({cost, ring.verts[p]});
     if (cost < out.front().first) std::swap(out.front(), out.back());
@@ -306,13 +333,30 @@ std::vector<std::pair<double, uint32_t>> Simplifier::Candidates(uint32_t v, cons
   return out;
 }
 
+// Every vertex's first evaluation is independent of the others: computed in
+// parallel (per-thread scratch), queued in vertex order.
+void Simplifier::EnqueueAll() {
+  ParallelFor(pos_.size(), [&](size_t begin, size_t end, size_t) {
+    CostScratch scratch;
+    Ring ring;
+    for (size_t v = begin; v < end; ++v) {
+      if (alive_[v] && BuildRing(static_cast<uint32_t>(v), &ring)) {
+        candidates_[v] = Candidates(static_cast<uint32_t>(v), ring, false, &scratch);
+      }
+    }
+  });
+  for (uint32_t v = 0; v < pos_.size(); ++v) {
+    if (!candidates_[v].empty()) queue_.push({candidates_[v].front().first, v, stamp_[v]});
+  }
+}
+
 // Queues v with a freshly computed cost and keeps its candidates for the pop.
 void Simplifier::Enqueue(uint32_t v) {
   ++stamp_[v];
   candidates_[v].clear();
   Ring ring;
   if (!alive_[v] || !BuildRing(v, &ring)) return;
-  candidates_[v] = Candidates(v, ring, false);
+  candidates_[v] = Candidates(v, ring, false, &scratch_);
   if (candidates_[v].empty()) return;
   queue_.push({candidates_[v].front().first, v, stamp_[v]});
 }
@@ -546,7 +590,7 @@ void Simplifier::Apply(uint32_t v, size_t p, const Ring& ring, const std::vector
 }
 
 void Simplifier::Run(size_t target, const ProgressFn& progress) {
-  for (uint32_t v = 0; v < pos_.size(); ++v) Enqueue(v);
+  EnqueueAll();
   const size_t start = alive_count_;
   size_t reported = 0;
   Ring ring;
@@ -561,7 +605,7 @@ void Simplifier::Run(size_t target, const ProgressFn& progress) {
       // The queue ranked v by its cheapest target alone; when that one is
       // refused, rank the others exactly before trying them.
       if (c == 1) {
-        cands = Candidates(v, ring, true);
+        cands = Candidates(v, ring, true, &scratch_);
         if (cands.size() < 2) break;
       }
       const auto& cand = cands[c];

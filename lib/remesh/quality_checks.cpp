@@ -1,6 +1,7 @@
 // Fold and degeneracy counts of a remesh (remeshing.md §7 check 2).
 #include "remesh/quality_checks.h"
 
+#include <algorithm>
 #include <mutex>
 
 #include <Eigen/Geometry>
@@ -13,7 +14,12 @@ namespace eqmesh {
 bool FacesAwayFromInput(const TriangleBvh& bvh, const Mesh& input, const Vec3& a, const Vec3& b, const Vec3& c,
                         double* error) {
   const Vec3 n = (b - a).cross(c - a);
-  const ClosestPointResult cp = bvh.ClosestPoint((a + b + c) / 3.0);
+  const Vec3 centroid = (a + b + c) / 3.0;
+  // The triangle's vertices lie on (or near) the input, so its centroid is
+  // within its longest edge of it: a bounded search prunes most of the tree.
+  const double reach = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+  ClosestPointResult cp = bvh.ClosestPoint(centroid, reach);
+  if (!cp.found()) cp = bvh.ClosestPoint(centroid);
   if (!cp.found()) return false;
   if (error) *error += n.norm() * cp.squared_distance;
   const Face& g = input.faces[cp.face];
