@@ -657,11 +657,10 @@ BaseDomain Simplifier::Extract() const {
 
 }  // namespace
 
-StatusOr<BaseDomain> BuildBaseDomain(const Mesh& mesh, const std::vector<uint8_t>& is_boundary,
-                                     const BaseDomainOptions& options) {
+StatusOr<BaseDomain> BuildBaseDomain(const Mesh& mesh, const TriangleBvh& bvh,
+                                     const std::vector<uint8_t>& is_boundary, const BaseDomainOptions& options) {
   if (mesh.faces.empty()) return InvalidMesh("no faces to simplify");
   if (is_boundary.size() != mesh.positions.size()) return InternalError("boundary flags size mismatch");
-  EQMESH_ASSIGN_OR_RETURN(TriangleBvh bvh, TriangleBvh::Build(mesh));
   Simplifier s(mesh, bvh, is_boundary);
   s.Run(options.target_vertices, options.progress);
   BaseDomain base = s.Extract();

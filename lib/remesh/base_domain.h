@@ -27,6 +27,7 @@
 #include "core/progress.h"
 #include "core/status.h"
 #include "mesh/mesh.h"
+#include "mesh/triangle_bvh.h"
 #include "remesh/param_point.h"
 
 namespace eqmesh {
@@ -42,9 +43,9 @@ struct BaseDomainOptions {
   ProgressFn progress;
 };
 
-// `mesh` must be clean: manifold, consistently oriented, every vertex referenced.
-// `is_boundary[v]` marks input boundary vertices.
-StatusOr<BaseDomain> BuildBaseDomain(const Mesh& mesh, const std::vector<uint8_t>& is_boundary,
-                                     const BaseDomainOptions& options);
+// `mesh` must be clean: manifold, consistently oriented, every vertex referenced;
+// `bvh` is built from it. `is_boundary[v]` marks input boundary vertices.
+StatusOr<BaseDomain> BuildBaseDomain(const Mesh& mesh, const TriangleBvh& bvh,
+                                     const std::vector<uint8_t>& is_boundary, const BaseDomainOptions& options);
 
 }  // namespace eqmesh

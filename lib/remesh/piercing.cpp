@@ -114,7 +114,8 @@ class LevelRefiner {
       return error < o.error;
     }
   };
-  void RepairPlacements();
+  // Returns the level-(j+1) faces still folded.
+  std::vector<uint32_t> RepairPlacements();
   bool TryAlternatives(uint32_t k, const PlacementScore& before, Chart* chart);
   double Lopsidedness(uint32_t k) const;
   PlacementScore ScorePlacement(uint32_t k) const;
@@ -532,7 +533,7 @@ void LevelRefiner::Run(std::vector<Vec3>* positions, std::vector<VertexKind>* ki
   });
   DemoteInvalidFaces();
   ForwardMapDemoted();
-  RepairPlacements();
+  stats->folded_faces = RepairPlacements();
   for (const EdgeChoice& c : choice_) {
     positions->push_back(c.position);
     kinds->push_back(c.kind);
@@ -602,13 +603,15 @@ LevelRefiner::PlacementScore LevelRefiner::ScorePlacement(uint32_t k) const {
 // hits, the parametric midpoint and the surface point closest to its
 // neighbours' average, and keeps the best ScorePlacement. Departure from Guskov
 // et al., who take the hit closest to the prediction.
-void LevelRefiner::RepairPlacements() {
+std::vector<uint32_t> LevelRefiner::RepairPlacements() {
   const size_t nf = dom_.faces().size();
   std::vector<uint8_t> suspect(choice_.size(), 0);
+  std::vector<uint8_t> touched(nf, 0);  // level-j faces whose children may be folded
   ParallelFor(nf, [&](size_t begin, size_t end, size_t) {
     for (size_t f = begin; f < end; ++f) {
       for (uint32_t c = 0; c < 4; ++c) {
         if (!Folded(static_cast<uint32_t>(4 * f + c))) continue;
+        touched[f] = 1;
         for (int i = 0; i < 3; ++i) suspect[dom_.EdgeOf(static_cast<uint32_t>(f), i)] = 1;
       }
     }
@@ -628,12 +631,21 @@ void LevelRefiner::RepairPlacements() {
         changed = true;
         // The neighbours' faces changed too: look at them again.
         for (uint32_t f : {dom_.Sides(k).left, dom_.Sides(k).right}) {
+          touched[f] = 1;
           for (int i = 0; i < 3; ++i) suspect[dom_.EdgeOf(f, i)] = 1;
         }
       }
     }
     if (!changed) break;
   }
+  std::vector<uint32_t> folded;
+  for (uint32_t f = 0; f < nf; ++f) {
+    if (!touched[f]) continue;
+    for (uint32_t c = 0; c < 4; ++c) {
+      if (Folded(4 * f + c)) folded.push_back(4 * f + c);
+    }
+  }
+  return folded;
 }
 
 bool LevelRefiner::TryAlternatives(uint32_t k, const PlacementScore& before, Chart* chart) {

@@ -58,6 +58,7 @@ struct LevelStats {
   size_t non_normal = 0;
   size_t boundary = 0;
   double rms_error = 0.0;  // input vertices to the level-(j+1) remesh
+  std::vector<uint32_t> folded_faces;  // level-(j+1) faces folded against the input
 };
 
 // `hierarchy` must have at least j+1 levels. `positions` holds level-j positions

@@ -163,6 +163,7 @@ struct Refinement {
   size_t normal = 0, non_normal = 0;
   std::vector<double> normal_fraction_per_level;
   std::vector<double> estimated_psnr_db_per_level;
+  std::vector<uint32_t> finest_folded_faces;
 };
 
 struct RefineContext {
@@ -194,6 +195,7 @@ StatusOr<Refinement> RefineAllLevels(const RefineContext& c) {
     r.normal_fraction_per_level.push_back(
         pierced ? static_cast<double>(stats.normal) / static_cast<double>(pierced) : 1.0);
     r.estimated_psnr_db_per_level.push_back(EstimatedPsnrDb(c.diagonal, stats.rms_error));
+    r.finest_folded_faces = std::move(stats.folded_faces);
     ++r.levels;
   }
   if (r.levels == 0 || r.hierarchy.levels() != r.levels) {
@@ -235,7 +237,7 @@ StatusOr<SemiRegularMesh> Remesh(const Mesh& input, const RemeshOptions& options
   BaseDomainOptions base_options;
   base_options.target_vertices = AutoBaseTarget(prep, options);
   base_options.progress = options.progress;
-  EQMESH_ASSIGN_OR_RETURN(BaseDomain base, BuildBaseDomain(prep.surface, prep.boundary, base_options));
+  EQMESH_ASSIGN_OR_RETURN(BaseDomain base, BuildBaseDomain(prep.surface, bvh, prep.boundary, base_options));
   report.base_vertices = base.base_to_input.size();
   if (report.base_vertices > base_options.target_vertices) {
     report.notes.push_back("simplification stalled at " + std::to_string(report.base_vertices) +
@@ -246,7 +248,7 @@ StatusOr<SemiRegularMesh> Remesh(const Mesh& input, const RemeshOptions& options
   const double diagonal = BoundingBoxDiagonal(prep.surface);
   const RefineContext context{base, prep.surface, surface, options, diagonal, prep.input_vertices};
   EQMESH_ASSIGN_OR_RETURN(Refinement best, RefineAllLevels(context));
-  const size_t untangled = UntangleFinestLevel(best.hierarchy, surface, &best.positions, &best.kinds);
+  const size_t untangled = UntangleFinestLevel(best.hierarchy, surface, best.finest_folded_faces, &best.positions, &best.kinds);
   if (untangled > 0 && !best.normal_fraction_per_level.empty()) {
     best.normal -= untangled;
     best.non_normal += untangled;

@@ -3,7 +3,6 @@
 
 #include <Eigen/Geometry>
 
-#include "remesh/parallel_for.h"
 #include "remesh/quality_checks.h"
 
 namespace eqmesh {
@@ -108,18 +107,14 @@ struct Untangler {
 }  // namespace
 
 size_t UntangleFinestLevel(const SemiRegularHierarchy& hierarchy, const InputSurface& surface,
-                           std::vector<Vec3>* positions, std::vector<VertexKind>* kinds) {
+                           const std::vector<uint32_t>& folded, std::vector<Vec3>* positions,
+                           std::vector<VertexKind>* kinds) {
   const int levels = hierarchy.levels();
-  if (levels < 1) return 0;
+  if (levels < 1 || folded.empty()) return 0;
   const uint32_t first_odd = hierarchy.NumVertices(levels - 1);
   Untangler u(hierarchy.Faces(levels), surface, positions);
-  std::vector<uint8_t> folded(u.faces.size(), 0);
-  ParallelFor(u.faces.size(), [&](size_t begin, size_t end, size_t) {
-    for (size_t f = begin; f < end; ++f) folded[f] = u.Folded(static_cast<uint32_t>(f), nullptr);
-  });
   std::vector<uint8_t> suspect(positions->size(), 0);
-  for (size_t f = 0; f < folded.size(); ++f) {
-    if (!folded[f]) continue;
+  for (uint32_t f : folded) {
     for (uint32_t v : u.faces[f]) suspect[v] = 1;
   }
   size_t moved = 0;

@@ -17,8 +17,10 @@
 
 namespace eqmesh {
 
-// Returns how many normal vertices it moved (they are non-normal now).
+// `folded`: the finest faces that fold (LevelStats::folded_faces of the last
+// refinement). Returns how many normal vertices it moved (non-normal now).
 size_t UntangleFinestLevel(const SemiRegularHierarchy& hierarchy, const InputSurface& surface,
-                           std::vector<Vec3>* positions, std::vector<VertexKind>* kinds);
+                           const std::vector<uint32_t>& folded, std::vector<Vec3>* positions,
+                           std::vector<VertexKind>* kinds);
 
 }  // namespace eqmesh
