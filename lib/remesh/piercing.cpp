@@ -100,6 +100,7 @@ class LevelRefiner {
   Vec3d DiamondParam(uint32_t k, const Vec3& x) const;
   Vec3 FineMidpoint(uint32_t k) const;
   std::optional<RayHit> NearestHit(const Vec3& p, const Vec3& n, double reach) const;
+  bool FacesAlong(uint32_t input_face, const Vec3& n) const;
   Vec3 ForwardMap(uint32_t root, const Vec3d& u, const Vec3& fallback_near, Chart* chart) const;
   Vec3d EdgePointIn(uint32_t f, int i) const;
   bool ChildrenValid(uint32_t f) const;
@@ -181,6 +182,9 @@ std::vector<EdgeChoice> LevelRefiner::NormalCandidates(uint32_t k, Chart* chart,
   if (!hits.empty() && !fine_) chart->Reset(sides.left);
   for (const RayHit& hit : hits) {
     if (out.size() >= limit) break;
+    // In 3D the diamond test cannot tell a thin part's two sides apart (both
+    // project into it): there the input must face the way the prediction does.
+    if (fine_ && !FacesAlong(hit.face, n)) continue;
     EdgeChoice c;
     c.position = p + (hit.t - reach) * n;
     c.kind = VertexKind::kNormal;
@@ -226,11 +230,7 @@ bool LevelRefiner::RelaxedChoice(uint32_t k, Chart* chart, EdgeChoice* out) cons
   }
   // Same-facing input triangles only, so a thin part's other side is never taken.
   const Vec3& n = frames_[k].normal;
-  const ClosestPointResult cp = s_.bvh->ClosestPointFiltered(sum / count, [&](uint32_t f) {
-    const Face& g = s_.mesh->faces[f];
-    const std::vector<Vec3>& x = s_.mesh->positions;
-    return (x[g[1]] - x[g[0]]).cross(x[g[2]] - x[g[0]]).dot(n) > 0.0;
-  });
+  const ClosestPointResult cp = s_.bvh->ClosestPointFiltered(sum / count, [&](uint32_t f) { return FacesAlong(f, n); });
   if (!cp.found()) return false;
   chart->Reset(dom_.Sides(k).left);
   out->position = cp.point;
@@ -314,6 +314,12 @@ std::optional<RayHit> LevelRefiner::NearestHit(const Vec3& p, const Vec3& n, dou
     if (!best || std::abs(h.t) < std::abs(best->t)) best = h;
   }
   return best;
+}
+
+bool LevelRefiner::FacesAlong(uint32_t input_face, const Vec3& n) const {
+  const Face& g = s_.mesh->faces[input_face];
+  const std::vector<Vec3>& x = s_.mesh->positions;
+  return (x[g[1]] - x[g[0]]).cross(x[g[2]] - x[g[0]]).dot(n) > 0.0;
 }
 
 // Boundary edge: the parametric midpoint of the input boundary polyline between
