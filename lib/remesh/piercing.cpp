@@ -40,6 +40,8 @@ constexpr double kFineLevelFaceRatio = 0.5;
 constexpr int kRepairPasses = 3;
 constexpr size_t kRepairCandidates = 8;
 constexpr double kMaxLopsidedness = 0.6;
+// Relaxed candidates: how far toward its neighbours' centroid a vertex moves.
+constexpr double kRelaxBlends[] = {1.0, 0.5};
 
 using Vec3d = Eigen::Vector3d;
 
@@ -94,7 +96,7 @@ class LevelRefiner {
   EdgeChoice MidpointChoice(uint32_t k) const;
   bool SurfaceParam(uint32_t k, const Vec3& x, uint32_t face, const std::array<double, 3>& bary, Chart* chart,
                     Vec3d* u) const;
-  bool RelaxedChoice(uint32_t k, Chart* chart, EdgeChoice* out) const;
+  bool RelaxedChoice(uint32_t k, double blend, Chart* chart, EdgeChoice* out) const;
   EdgeChoice BoundaryPoint(uint32_t k) const;
   bool InKite(const Vec3d& u, int slot) const;
   Vec3d DiamondParam(uint32_t k, const Vec3& x) const;
@@ -215,9 +217,10 @@ bool LevelRefiner::SurfaceParam(uint32_t k, const Vec3& x, uint32_t face, const 
   return ImageIsConsistent(c2);
 }
 
-// Untangling candidate for a repair: the surface point closest to the average
-// of the vertex's six level-(j+1) neighbours (non-normal).
-bool LevelRefiner::RelaxedChoice(uint32_t k, Chart* chart, EdgeChoice* out) const {
+// Untangling candidate for a repair: the surface point closest to the vertex
+// moved `blend` of the way to the average of its six level-(j+1) neighbours
+// (non-normal).
+bool LevelRefiner::RelaxedChoice(uint32_t k, double blend, Chart* chart, EdgeChoice* out) const {
   const uint32_t self = static_cast<uint32_t>(pos_.size()) + k;
   Vec3 sum = Vec3::Zero();
   int count = 0;
@@ -230,7 +233,8 @@ bool LevelRefiner::RelaxedChoice(uint32_t k, Chart* chart, EdgeChoice* out) cons
   }
   // Same-facing input triangles only, so a thin part's other side is never taken.
   const Vec3& n = frames_[k].normal;
-  const ClosestPointResult cp = s_.bvh->ClosestPointFiltered(sum / count, [&](uint32_t f) { return FacesAlong(f, n); });
+  const Vec3 target = (1.0 - blend) * choice_[k].position + blend * (sum / count);
+  const ClosestPointResult cp = s_.bvh->ClosestPointFiltered(target, [&](uint32_t f) { return FacesAlong(f, n); });
   if (!cp.found()) return false;
   chart->Reset(dom_.Sides(k).left);
   out->position = cp.point;
@@ -660,8 +664,10 @@ bool LevelRefiner::TryAlternatives(uint32_t k, const PlacementScore& before, Cha
   mid.position = fine_ ? FineMidpoint(k) : ForwardMap(dom_.Sides(k).left, mid.u, predicted_[k], chart);
   mid.needs_forward = false;
   options.push_back(mid);
-  EdgeChoice relaxed;
-  if (RelaxedChoice(k, chart, &relaxed)) options.push_back(relaxed);
+  for (const double blend : kRelaxBlends) {
+    EdgeChoice relaxed;
+    if (RelaxedChoice(k, blend, chart, &relaxed)) options.push_back(relaxed);
+  }
   const EdgeChoice current = choice_[k];
   EdgeChoice best = current;
   PlacementScore best_score = before;
