@@ -547,9 +547,6 @@ void LevelRefiner::Run(std::vector<Vec3>* positions, std::vector<VertexKind>* ki
   for (const EdgeChoice& c : choice_) {
     positions->push_back(c.position);
     kinds->push_back(c.kind);
-    if (c.kind == VertexKind::kNormal) ++stats->normal;
-    if (c.kind == VertexKind::kNonNormal) ++stats->non_normal;
-    if (c.kind == VertexKind::kBoundary) ++stats->boundary;
   }
   std::vector<ParamPoint> next(params_.size());
   UpdateParams(&next);

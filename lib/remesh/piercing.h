@@ -54,9 +54,6 @@ struct InputSurface {
 };
 
 struct LevelStats {
-  size_t normal = 0;
-  size_t non_normal = 0;
-  size_t boundary = 0;
   double rms_error = 0.0;  // input vertices to the level-(j+1) remesh
   std::vector<uint32_t> folded_faces;  // level-(j+1) faces folded against the input
 };

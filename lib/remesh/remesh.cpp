@@ -160,11 +160,29 @@ struct Refinement {
   std::vector<Vec3> positions;
   std::vector<VertexKind> kinds;
   int levels = 0;
-  size_t normal = 0, non_normal = 0;
-  std::vector<double> normal_fraction_per_level;
   std::vector<double> estimated_psnr_db_per_level;
   std::vector<uint32_t> finest_folded_faces;
 };
+
+// Normal share of the new, non-boundary vertices, per level and over all, from
+// the final kinds (the untangling may have changed some).
+void CountNormalVertices(const SemiRegularHierarchy& h, const std::vector<VertexKind>& kinds,
+                         RemeshReport* report) {
+  size_t normal_all = 0, counted_all = 0;
+  report->normal_fraction_per_level.clear();
+  for (int level = 1; level <= h.levels(); ++level) {
+    size_t normal = 0, counted = 0;
+    for (uint32_t v = h.NumVertices(level - 1); v < h.NumVertices(level); ++v) {
+      if (kinds[v] == VertexKind::kBoundary) continue;
+      ++counted;
+      normal += kinds[v] == VertexKind::kNormal;
+    }
+    report->normal_fraction_per_level.push_back(counted ? static_cast<double>(normal) / static_cast<double>(counted) : 1.0);
+    normal_all += normal;
+    counted_all += counted;
+  }
+  report->normal_fraction = counted_all ? static_cast<double>(normal_all) / static_cast<double>(counted_all) : 1.0;
+}
 
 struct RefineContext {
   const BaseDomain& base;
@@ -189,11 +207,6 @@ StatusOr<Refinement> RefineAllLevels(const RefineContext& c) {
     ReportProgress(c.options.progress, std::string("pierce level ") + std::to_string(r.levels + 1), 0.0);
     LevelStats stats;
     RefineLevel(r.hierarchy, r.levels, c.surface, &r.positions, &r.kinds, &params, &stats);
-    r.normal += stats.normal;
-    r.non_normal += stats.non_normal;
-    const size_t pierced = stats.normal + stats.non_normal;
-    r.normal_fraction_per_level.push_back(
-        pierced ? static_cast<double>(stats.normal) / static_cast<double>(pierced) : 1.0);
     r.estimated_psnr_db_per_level.push_back(EstimatedPsnrDb(c.diagonal, stats.rms_error));
     r.finest_folded_faces = std::move(stats.folded_faces);
     ++r.levels;
@@ -248,22 +261,13 @@ StatusOr<SemiRegularMesh> Remesh(const Mesh& input, const RemeshOptions& options
   const double diagonal = BoundingBoxDiagonal(prep.surface);
   const RefineContext context{base, prep.surface, surface, options, diagonal, prep.input_vertices};
   EQMESH_ASSIGN_OR_RETURN(Refinement best, RefineAllLevels(context));
-  const size_t untangled = UntangleFinestLevel(best.hierarchy, surface, best.finest_folded_faces, &best.positions, &best.kinds);
-  if (untangled > 0 && !best.normal_fraction_per_level.empty()) {
-    best.normal -= untangled;
-    best.non_normal += untangled;
-    const size_t finest = best.hierarchy.NumOddVertices(best.levels - 1);
-    best.normal_fraction_per_level.back() -= static_cast<double>(untangled) / static_cast<double>(finest);
-  }
+  UntangleFinestLevel(best.hierarchy, surface, best.finest_folded_faces, &best.positions, &best.kinds);
+  CountNormalVertices(best.hierarchy, best.kinds, &report);
   out.hierarchy = std::move(best.hierarchy);
   out.positions = std::move(best.positions);
   out.kinds = std::move(best.kinds);
   report.levels = best.levels;
-  report.normal_fraction_per_level = best.normal_fraction_per_level;
   report.estimated_psnr_db_per_level = best.estimated_psnr_db_per_level;
-  report.normal_fraction = best.normal + best.non_normal
-                               ? static_cast<double>(best.normal) / static_cast<double>(best.normal + best.non_normal)
-                               : 1.0;
   report.output_vertices = out.positions.size() + out.kept_exactly.positions.size();
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;

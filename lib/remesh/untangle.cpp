@@ -1,9 +1,12 @@
 // Finest-level fold removal; see untangle.h.
 #include "remesh/untangle.h"
 
+#include <algorithm>
+
 #include <Eigen/Geometry>
 
 #include "remesh/quality_checks.h"
+#include "wavelet/butterfly.h"
 
 namespace eqmesh {
 namespace {
@@ -12,6 +15,9 @@ constexpr int kPasses = 4;
 // Blends between a vertex's position and its neighbours' centroid that are tried.
 constexpr double kBlends[] = {1.0, 0.5};
 constexpr double kMaxErrorGrowth = 2.0;
+// Cluster smoothing: rings of neighbours around the folds, Jacobi sweeps.
+constexpr int kClusterRings = 2;
+constexpr int kClusterIterations = 8;
 
 struct Untangler {
   const std::vector<Face>& faces;
@@ -102,33 +108,165 @@ struct Untangler {
     pos[v] = best;
     return best != start;
   }
+
+  // Movable vertices within kClusterRings rings of the faces around `folded`
+  // that still fold, grouped into connected clusters.
+  std::vector<std::vector<uint32_t>> FoldClusters(const std::vector<uint32_t>& folded,
+                                                  const std::vector<uint8_t>& movable) const {
+    std::vector<uint8_t> in(pos.size(), 0);
+    std::vector<uint32_t> seeds;
+    for (uint32_t f0 : folded) {
+      for (uint32_t v0 : faces[f0]) {
+        for (uint32_t n = offsets[v0]; n < offsets[v0 + 1]; ++n) {
+          const uint32_t f = incident[n];
+          if (!Folded(f, nullptr)) continue;
+          for (uint32_t v : faces[f]) {
+            if (!in[v]) {
+              in[v] = 1;
+              seeds.push_back(v);
+            }
+          }
+        }
+      }
+    }
+    std::vector<uint32_t> frontier = seeds, region = seeds;
+    for (int ring = 0; ring < kClusterRings; ++ring) {
+      std::vector<uint32_t> next;
+      for (uint32_t v : frontier) {
+        for (uint32_t n = offsets[v]; n < offsets[v + 1]; ++n) {
+          for (uint32_t w : faces[incident[n]]) {
+            if (in[w]) continue;
+            in[w] = 1;
+            next.push_back(w);
+            region.push_back(w);
+          }
+        }
+      }
+      frontier = std::move(next);
+    }
+    std::sort(region.begin(), region.end());
+    std::vector<std::vector<uint32_t>> clusters;
+    std::vector<uint8_t> done(pos.size(), 0);
+    for (uint32_t start : region) {
+      if (done[start] || !movable[start]) continue;
+      std::vector<uint32_t> cluster{start}, stack{start};
+      done[start] = 1;
+      while (!stack.empty()) {
+        const uint32_t v = stack.back();
+        stack.pop_back();
+        for (uint32_t n = offsets[v]; n < offsets[v + 1]; ++n) {
+          for (uint32_t w : faces[incident[n]]) {
+            if (!in[w] || done[w] || !movable[w]) continue;
+            done[w] = 1;
+            cluster.push_back(w);
+            stack.push_back(w);
+          }
+        }
+      }
+      std::sort(cluster.begin(), cluster.end());
+      clusters.push_back(std::move(cluster));
+    }
+    return clusters;
+  }
+
+  // Folds and error of the faces around a cluster.
+  std::pair<size_t, double> ClusterScore(const std::vector<uint32_t>& cluster) const {
+    std::vector<uint32_t> around;
+    for (uint32_t v : cluster) {
+      for (uint32_t n = offsets[v]; n < offsets[v + 1]; ++n) around.push_back(incident[n]);
+    }
+    std::sort(around.begin(), around.end());
+    around.erase(std::unique(around.begin(), around.end()), around.end());
+    std::pair<size_t, double> s{0, 0.0};
+    for (uint32_t f : around) s.first += Folded(f, &s.second);
+    return s;
+  }
+
+  // Where single moves are stuck (a pleat needs several vertices to move
+  // together), Jacobi-smooths the whole cluster on the surface; kept only if it
+  // folds fewer faces without more than kMaxErrorGrowth times the error.
+  bool SmoothCluster(const std::vector<uint32_t>& cluster) {
+    const std::pair<size_t, double> before = ClusterScore(cluster);
+    if (before.first == 0) return false;
+    std::vector<Vec3> saved, next(cluster.size());
+    for (uint32_t v : cluster) saved.push_back(pos[v]);
+    const std::vector<Vec3>& x = surface.mesh->positions;
+    for (int it = 0; it < kClusterIterations; ++it) {
+      for (size_t i = 0; i < cluster.size(); ++i) {
+        const uint32_t v = cluster[i];
+        const Vec3 facing = InputNormal(v);
+        const ClosestPointResult cp = surface.bvh->ClosestPointFiltered(NeighbourCentroid(v), [&](uint32_t f) {
+          const Face& g = surface.mesh->faces[f];
+          return (x[g[1]] - x[g[0]]).cross(x[g[2]] - x[g[0]]).dot(facing) > 0.0;
+        });
+        next[i] = cp.found() ? cp.point : pos[v];
+      }
+      for (size_t i = 0; i < cluster.size(); ++i) pos[cluster[i]] = next[i];
+    }
+    const std::pair<size_t, double> after = ClusterScore(cluster);
+    if (after.first < before.first && after.second <= kMaxErrorGrowth * before.second) return true;
+    for (size_t i = 0; i < cluster.size(); ++i) pos[cluster[i]] = saved[i];
+    return false;
+  }
 };
+
+// Vertices of the last two levels move (not boundary ones): most folds left
+// after the last refinement have a corner of the level before it, which the
+// per-level repair could no longer move.
+std::vector<uint8_t> MovableVertices(const SemiRegularHierarchy& h, const std::vector<VertexKind>& kinds) {
+  const int levels = h.levels();
+  std::vector<uint8_t> movable(kinds.size(), 0);
+  const uint32_t first = h.NumVertices(std::max(0, levels - 2));
+  for (uint32_t v = first; v < kinds.size(); ++v) {
+    movable[v] = kinds[v] != VertexKind::kBoundary && kinds[v] != VertexKind::kBase;
+  }
+  return movable;
+}
+
+// A moved vertex is no longer where its prediction's normal put it, nor are the
+// finest vertices predicted from it: all of them become non-normal. Returns how
+// many normal vertices that concerned.
+size_t MarkMovedNonNormal(const SemiRegularHierarchy& h, const std::vector<uint8_t>& moved,
+                          std::vector<VertexKind>* kinds) {
+  std::vector<uint8_t> affected = moved;
+  const int last = h.levels() - 1;
+  const StencilTable stencils = BuildButterflyStencils(h, last);
+  const uint32_t first_odd = h.NumVertices(last);
+  for (uint32_t k = 0; k < stencils.size(); ++k) {
+    for (uint32_t i = stencils.offsets[k]; i < stencils.offsets[k + 1]; ++i) {
+      if (moved[stencils.indices[i]]) affected[first_odd + k] = 1;
+    }
+  }
+  size_t count = 0;
+  for (size_t v = 0; v < affected.size(); ++v) {
+    if (affected[v] && (*kinds)[v] == VertexKind::kNormal) {
+      (*kinds)[v] = VertexKind::kNonNormal;
+      ++count;
+    }
+  }
+  return count;
+}
 
 }  // namespace
 
 size_t UntangleFinestLevel(const SemiRegularHierarchy& hierarchy, const InputSurface& surface,
                            const std::vector<uint32_t>& folded, std::vector<Vec3>* positions,
                            std::vector<VertexKind>* kinds) {
-  const int levels = hierarchy.levels();
-  if (levels < 1 || folded.empty()) return 0;
-  const uint32_t first_odd = hierarchy.NumVertices(levels - 1);
-  Untangler u(hierarchy.Faces(levels), surface, positions);
-  std::vector<uint8_t> suspect(positions->size(), 0);
+  if (hierarchy.levels() < 1 || folded.empty()) return 0;
+  Untangler u(hierarchy.Faces(hierarchy.levels()), surface, positions);
+  const std::vector<uint8_t> movable = MovableVertices(hierarchy, *kinds);
+  std::vector<uint8_t> suspect(positions->size(), 0), moved(positions->size(), 0);
   for (uint32_t f : folded) {
     for (uint32_t v : u.faces[f]) suspect[v] = 1;
   }
-  size_t moved = 0;
   for (int pass = 0; pass < kPasses; ++pass) {
     bool changed = false;
-    for (uint32_t v = first_odd; v < positions->size(); ++v) {
-      if (!suspect[v] || (*kinds)[v] == VertexKind::kBoundary) continue;
+    for (uint32_t v = 0; v < positions->size(); ++v) {
+      if (!suspect[v] || !movable[v]) continue;
       suspect[v] = 0;
       if (!u.Improve(v)) continue;
       changed = true;
-      if ((*kinds)[v] != VertexKind::kNonNormal) {
-        (*kinds)[v] = VertexKind::kNonNormal;
-        ++moved;
-      }
+      moved[v] = 1;
       // Its neighbours' faces changed: they may now improve too.
       for (uint32_t n = u.offsets[v]; n < u.offsets[v + 1]; ++n) {
         for (uint32_t w : u.faces[u.incident[n]]) suspect[w] = 1;
@@ -136,7 +274,11 @@ size_t UntangleFinestLevel(const SemiRegularHierarchy& hierarchy, const InputSur
     }
     if (!changed) break;
   }
-  return moved;
+  for (const std::vector<uint32_t>& cluster : u.FoldClusters(folded, movable)) {
+    if (!u.SmoothCluster(cluster)) continue;
+    for (uint32_t v : cluster) moved[v] = 1;
+  }
+  return MarkMovedNonNormal(hierarchy, moved, kinds);
 }
 
 }  // namespace eqmesh

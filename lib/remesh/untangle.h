@@ -2,11 +2,12 @@
 //
 // Departure from Guskov et al. 2000 (whose remesh has no such pass): a face of
 // the finest level that faces away from the input (quality_checks.h) gets its
-// finest-level corners moved, one at a time, to the input point closest to
-// their neighbours' centroid (same-facing input triangles only), when that
-// folds fewer of the faces around them. No parameter is needed any more at the
-// finest level, so the move is free in 3D; a moved vertex becomes non-normal.
-// Coarser vertices and boundary vertices never move.
+// corners of the last two levels moved, one at a time, to the input point
+// closest to (or half-way to) their neighbours' centroid on same-facing input
+// triangles, when that folds fewer of the faces around them; clusters where no
+// single move helps are smoothed together. No parameter is needed any more, so
+// the moves are free in 3D; moved vertices, and the finest vertices predicted
+// from them, become non-normal. Boundary and base vertices never move.
 #pragma once
 
 #include <cstddef>
@@ -18,7 +19,7 @@
 namespace eqmesh {
 
 // `folded`: the finest faces that fold (LevelStats::folded_faces of the last
-// refinement). Returns how many normal vertices it moved (non-normal now).
+// refinement). Returns how many normal vertices became non-normal.
 size_t UntangleFinestLevel(const SemiRegularHierarchy& hierarchy, const InputSurface& surface,
                            const std::vector<uint32_t>& folded, std::vector<Vec3>* positions,
                            std::vector<VertexKind>* kinds);
