@@ -234,7 +234,10 @@ bool LevelRefiner::RelaxedChoice(uint32_t k, double blend, Chart* chart, EdgeCho
   // Same-facing input triangles only, so a thin part's other side is never taken.
   const Vec3& n = frames_[k].normal;
   const Vec3 target = (1.0 - blend) * choice_[k].position + blend * (sum / count);
-  const ClosestPointResult cp = s_.bvh->ClosestPointFiltered(target, [&](uint32_t f) { return FacesAlong(f, n); });
+  const Edge& e = h_.OddEdge(j_, k);
+  const double reach = (pos_[e[0]] - pos_[e[1]]).norm();
+  const ClosestPointResult cp =
+      s_.bvh->ClosestPointFiltered(target, [&](uint32_t f) { return FacesAlong(f, n); }, reach);
   if (!cp.found()) return false;
   chart->Reset(dom_.Sides(k).left);
   out->position = cp.point;

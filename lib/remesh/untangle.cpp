@@ -18,6 +18,9 @@ constexpr double kMaxErrorGrowth = 2.0;
 // Cluster smoothing: rings of neighbours around the folds, Jacobi sweeps.
 constexpr int kClusterRings = 2;
 constexpr int kClusterIterations = 8;
+// Larger clusters are whole folded regions (dragon_vrip's crevices), where a
+// Jacobi smoothing is slow and was never kept.
+constexpr size_t kMaxClusterVertices = 256;
 
 struct Untangler {
   const std::vector<Face>& faces;
@@ -68,6 +71,28 @@ struct Untangler {
     return count ? Vec3(sum / count) : pos[v];
   }
 
+  // Farthest neighbour of v: the reach of its moves.
+  double FanRadius(uint32_t v) const {
+    double r = 0.0;
+    for (uint32_t n = offsets[v]; n < offsets[v + 1]; ++n) {
+      for (uint32_t w : faces[incident[n]]) r = std::max(r, (pos[w] - pos[v]).norm());
+    }
+    return r;
+  }
+
+  // Input point closest to `target` on a triangle facing along `facing`, within
+  // `reach` (a filtered search cannot prune by distance alone, so it is bounded).
+  ClosestPointResult ProjectFacing(const Vec3& target, const Vec3& facing, double reach) const {
+    const std::vector<Vec3>& x = surface.mesh->positions;
+    return surface.bvh->ClosestPointFiltered(
+        target,
+        [&](uint32_t f) {
+          const Face& g = surface.mesh->faces[f];
+          return (x[g[1]] - x[g[0]]).cross(x[g[2]] - x[g[0]]).dot(facing) > 0.0;
+        },
+        reach);
+  }
+
   // Orientation of the input where v lies now.
   Vec3 InputNormal(uint32_t v) const {
     const ClosestPointResult cp = surface.bvh->ClosestPoint(pos[v]);
@@ -84,15 +109,12 @@ struct Untangler {
     const Vec3 start = pos[v];
     const Vec3 centroid = NeighbourCentroid(v);
     const Vec3 facing = InputNormal(v);
-    const std::vector<Vec3>& x = surface.mesh->positions;
     Vec3 best = start;
     std::pair<size_t, double> best_score = before;
+
     for (double t : kBlends) {
       const Vec3 target = (1.0 - t) * start + t * centroid;
-      const ClosestPointResult cp = surface.bvh->ClosestPointFiltered(target, [&](uint32_t f) {
-        const Face& g = surface.mesh->faces[f];
-        return (x[g[1]] - x[g[0]]).cross(x[g[2]] - x[g[0]]).dot(facing) > 0.0;
-      });
+      const ClosestPointResult cp = ProjectFacing(target, facing, FanRadius(v));
       if (!cp.found()) continue;
       pos[v] = cp.point;
       const std::pair<size_t, double> score = Score(v);
@@ -186,19 +208,16 @@ struct Untangler {
   // together), Jacobi-smooths the whole cluster on the surface; kept only if it
   // folds fewer faces without more than kMaxErrorGrowth times the error.
   bool SmoothCluster(const std::vector<uint32_t>& cluster) {
+    if (cluster.size() > kMaxClusterVertices) return false;
     const std::pair<size_t, double> before = ClusterScore(cluster);
     if (before.first == 0) return false;
     std::vector<Vec3> saved, next(cluster.size());
     for (uint32_t v : cluster) saved.push_back(pos[v]);
-    const std::vector<Vec3>& x = surface.mesh->positions;
     for (int it = 0; it < kClusterIterations; ++it) {
       for (size_t i = 0; i < cluster.size(); ++i) {
         const uint32_t v = cluster[i];
         const Vec3 facing = InputNormal(v);
-        const ClosestPointResult cp = surface.bvh->ClosestPointFiltered(NeighbourCentroid(v), [&](uint32_t f) {
-          const Face& g = surface.mesh->faces[f];
-          return (x[g[1]] - x[g[0]]).cross(x[g[2]] - x[g[0]]).dot(facing) > 0.0;
-        });
+        const ClosestPointResult cp = ProjectFacing(NeighbourCentroid(v), facing, FanRadius(v));
         next[i] = cp.found() ? cp.point : pos[v];
       }
       for (size_t i = 0; i < cluster.size(); ++i) pos[cluster[i]] = next[i];
