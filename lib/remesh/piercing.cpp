@@ -7,11 +7,13 @@
 #include <optional>
 
 #include "remesh/level_domain.h"
+#include "remesh/level_refiner.h"
 #include "remesh/parallel_for.h"
 #include "remesh/quality_checks.h"
 #include "wavelet/butterfly.h"
 
 namespace eqmesh {
+namespace remesh_internal {
 namespace {
 
 // Rays reach this many edge lengths on either side of the prediction.
@@ -29,28 +31,6 @@ constexpr size_t kMaxChartFaces = 4096;
 // (dragon_vrip, 1.8M new vertices: over 10 CPU minutes in one level). A miss
 // falls back to the closest input point.
 constexpr size_t kMaxFineForwardChartFaces = 256;
-// Levels with at least this many faces per input face are refined in 3D (see
-// fine_). Measured on the bench meshes: 0.5 (the level after the last one
-// coarser than the input's half) folds 3x fewer faces than 1; 0.15 lost up to
-// 20 dB where coarse levels still need the charts' protection on thin parts.
-constexpr double kFineLevelFaceRatio = 0.5;
-// Placement repair: sweeps over the suspect vertices, hits tried per vertex,
-// and how far from its edge's 3D middle a vertex may sit (0.6: within the
-// middle 80 % of the edge).
-constexpr int kRepairPasses = 3;
-constexpr size_t kRepairCandidates = 8;
-constexpr double kMaxLopsidedness = 0.6;
-// Relaxed candidates: how far toward its neighbours' centroid a vertex moves.
-constexpr double kRelaxBlends[] = {1.0, 0.5};
-
-using Vec3d = Eigen::Vector3d;
-
-struct EdgeChoice {
-  Vec3 position = Vec3::Zero();
-  Vec3d u = Vec3d::Zero();  // parameter in the left face's chart
-  VertexKind kind = VertexKind::kNonNormal;
-  bool needs_forward = false;
-};
 
 double Quality2d(const Vec2& a, const Vec2& b, const Vec2& c) {
   const double denom = (b - a).squaredNorm() + (c - b).squaredNorm() + (a - c).squaredNorm();
@@ -78,77 +58,8 @@ void ClampBary(Vec3d* b) {
   *b = s > 0.0 ? Vec3d(*b / s) : Vec3d::Constant(1.0 / 3.0);
 }
 
-class LevelRefiner {
- public:
-  LevelRefiner(const SemiRegularHierarchy& h, int j, const InputSurface& s,
-               std::vector<Vec3>* positions, std::vector<ParamPoint>* params)
-      : h_(h), j_(j), s_(s), dom_(h, j), pos_(*positions), params_(*params) {
-    fine_ = static_cast<double>(dom_.faces().size()) >= kFineLevelFaceRatio * static_cast<double>(s.mesh->faces.size());
-  }
+}  // namespace
 
-  void Run(std::vector<Vec3>* positions, std::vector<VertexKind>* kinds, LevelStats* stats);
-  std::vector<ParamPoint> TakeParams() { return std::move(params_out_); }
-
- private:
-  void BuildBuckets();
-  EdgeChoice PierceEdge(uint32_t k, Chart* chart) const;
-  std::vector<EdgeChoice> NormalCandidates(uint32_t k, Chart* chart, size_t limit) const;
-  EdgeChoice MidpointChoice(uint32_t k) const;
-  bool SurfaceParam(uint32_t k, const Vec3& x, uint32_t face, const std::array<double, 3>& bary, Chart* chart,
-                    Vec3d* u) const;
-  bool RelaxedChoice(uint32_t k, double blend, Chart* chart, EdgeChoice* out) const;
-  EdgeChoice BoundaryPoint(uint32_t k) const;
-  bool InKite(const Vec3d& u, int slot) const;
-  Vec3d DiamondParam(uint32_t k, const Vec3& x) const;
-  Vec3 FineMidpoint(uint32_t k) const;
-  std::optional<RayHit> NearestHit(const Vec3& p, const Vec3& n, double reach) const;
-  bool FacesAlong(uint32_t input_face, const Vec3& n) const;
-  Vec3 ForwardMap(uint32_t root, const Vec3d& u, const Vec3& fallback_near, Chart* chart) const;
-  Vec3d EdgePointIn(uint32_t f, int i) const;
-  bool ChildrenValid(uint32_t f) const;
-  void DemoteInvalidFaces();
-  struct PlacementScore {
-    size_t folds = 0;
-    bool lopsided = false;
-    double error = 0.0;
-    bool operator<(const PlacementScore& o) const {
-      if (folds != o.folds) return folds < o.folds;
-      if (lopsided != o.lopsided) return !lopsided;
-      return error < o.error;
-    }
-  };
-  // Returns the level-(j+1) faces still folded.
-  std::vector<uint32_t> RepairPlacements();
-  bool TryAlternatives(uint32_t k, const PlacementScore& before, Chart* chart);
-  double Lopsidedness(uint32_t k) const;
-  PlacementScore ScorePlacement(uint32_t k) const;
-  const Vec3& FinePosition(uint32_t v) const;
-  bool Folded(uint32_t child, double* error = nullptr) const;
-  std::array<uint32_t, 6> FacesAround(uint32_t k) const;
-  size_t FoldsAround(uint32_t k, double* error = nullptr) const;
-  void ForwardMapDemoted();
-  std::array<std::array<Vec3d, 3>, 4> Children(uint32_t f) const;
-  ParamPoint Relocate(uint32_t f, uint32_t x) const;
-  bool RelocateBoundary(uint32_t f, uint32_t x, ParamPoint* out) const;
-  void UpdateParams(std::vector<ParamPoint>* next) const;
-  double RmsError(const std::vector<Vec3>& fine_pos, const std::vector<ParamPoint>& next) const;
-
-  const SemiRegularHierarchy& h_;
-  const int j_;
-  const InputSurface& s_;
-  const LevelDomain dom_;
-  const std::vector<Vec3>& pos_;
-  const std::vector<ParamPoint>& params_;
-  std::vector<uint32_t> bucket_offsets_, bucket_items_;
-  std::vector<Vec3> predicted_;
-  std::vector<LocalFrame> frames_;
-  std::vector<EdgeChoice> choice_;
-  std::vector<ParamPoint> params_out_;
-  // A level with at least kFineLevelFaceRatio faces per input face: hits are validated and
-  // demoted midpoints placed in 3D (DiamondParam, FineMidpoint) instead of
-  // through charts.
-  bool fine_ = false;
-};
 
 void LevelRefiner::BuildBuckets() {
   const size_t nf = dom_.faces().size();
@@ -217,43 +128,16 @@ bool LevelRefiner::SurfaceParam(uint32_t k, const Vec3& x, uint32_t face, const 
   return ImageIsConsistent(c2);
 }
 
-// Untangling candidate for a repair: the surface point closest to the vertex
-// moved `blend` of the way to the average of its six level-(j+1) neighbours
-// (non-normal).
-bool LevelRefiner::RelaxedChoice(uint32_t k, double blend, Chart* chart, EdgeChoice* out) const {
-  const uint32_t self = static_cast<uint32_t>(pos_.size()) + k;
-  Vec3 sum = Vec3::Zero();
-  int count = 0;
-  for (uint32_t f : FacesAround(k)) {
-    for (uint32_t v : h_.Faces(j_ + 1)[f]) {
-      if (v == self) continue;
-      sum += FinePosition(v);
-      ++count;
-    }
-  }
-  // Same-facing input triangles only, so a thin part's other side is never taken.
-  const Vec3& n = frames_[k].normal;
-  const Vec3 target = (1.0 - blend) * choice_[k].position + blend * (sum / count);
-  const Edge& e = h_.OddEdge(j_, k);
-  const double reach = (pos_[e[0]] - pos_[e[1]]).norm();
-  const ClosestPointResult cp =
-      s_.bvh->ClosestPointFiltered(target, [&](uint32_t f) { return FacesAlong(f, n); }, reach);
-  if (!cp.found()) return false;
-  chart->Reset(dom_.Sides(k).left);
-  out->position = cp.point;
-  out->kind = VertexKind::kNonNormal;
-  out->needs_forward = false;
-  if (!SurfaceParam(k, cp.point, cp.face, cp.barycentric, chart, &out->u)) return false;
-  // On 3D-refined levels the diamond is the 3D one and cannot reach a thin
-  // part's other side, so the whole diamond is admissible there.
-  if (fine_) {
-    const int a = dom_.Sides(k).left_slot, b = (a + 1) % 3, c = (a + 2) % 3;
-    const Vec3d& u = out->u;
-    return std::min(u[a], u[b]) >= std::max(0.0, -u[c]);
-  }
-  return InKite(out->u, dom_.Sides(k).left_slot);
+// Guskov et al.'s region: the two faces of the edge in `slot` of u's chart.
+bool LevelRefiner::InDiamond(const Vec3d& u, int slot) const {
+  const int a = slot, b = (slot + 1) % 3, c = (slot + 2) % 3;
+  return std::min(u[a], u[b]) >= std::max(0.0, -u[c]);
 }
 
+// Surface point of a demoted midpoint of edge k at chart parameter u.
+Vec3 LevelRefiner::MidpointPosition(uint32_t k, const Vec3d& u, Chart* chart) const {
+  return fine_ ? FineMidpoint(k) : ForwardMap(dom_.Sides(k).left, u, predicted_[k], chart);
+}
 
 EdgeChoice LevelRefiner::MidpointChoice(uint32_t k) const {
   EdgeChoice out;
@@ -526,8 +410,7 @@ void LevelRefiner::ForwardMapDemoted() {
     for (size_t k = begin; k < end; ++k) {
       EdgeChoice& c = choice_[k];
       if (!c.needs_forward) continue;
-      c.position = fine_ ? FineMidpoint(static_cast<uint32_t>(k))
-                         : ForwardMap(dom_.Sides(static_cast<uint32_t>(k)).left, c.u, predicted_[k], &chart);
+      c.position = MidpointPosition(static_cast<uint32_t>(k), c.u, &chart);
       c.needs_forward = false;
     }
   });
@@ -555,133 +438,6 @@ void LevelRefiner::Run(std::vector<Vec3>* positions, std::vector<VertexKind>* ki
   UpdateParams(&next);
   stats->rms_error = RmsError(*positions, next);
   params_out_ = std::move(next);
-}
-
-const Vec3& LevelRefiner::FinePosition(uint32_t v) const {
-  return v < pos_.size() ? pos_[v] : choice_[v - pos_.size()].position;
-}
-
-// A level-(j+1) face folds when it faces away from the input at the closest
-// point of its centroid (the remesh check, quality_checks.h); degenerate counts.
-// Also returns the face's area times its centroid's squared distance.
-bool LevelRefiner::Folded(uint32_t child, double* error) const {
-  const Face& t = h_.Faces(j_ + 1)[child];
-  const Vec3& a = FinePosition(t[0]);
-  const Vec3& b = FinePosition(t[1]);
-  const Vec3& c = FinePosition(t[2]);
-  if (!((b - a).cross(c - a).squaredNorm() > 0.0)) return true;
-  return FacesAwayFromInput(*s_.bvh, *s_.mesh, a, b, c, error);
-}
-
-// The six level-(j+1) faces around odd vertex k (three children of each side).
-std::array<uint32_t, 6> LevelRefiner::FacesAround(uint32_t k) const {
-  const EdgeSides& e = dom_.Sides(k);
-  const uint32_t l = 4 * e.left, r = 4 * e.right;
-  return {l + e.left_slot, l + (e.left_slot + 1) % 3, l + 3, r + e.right_slot, r + (e.right_slot + 1) % 3, r + 3};
-}
-
-size_t LevelRefiner::FoldsAround(uint32_t k, double* error) const {
-  size_t n = 0;
-  for (uint32_t f : FacesAround(k)) n += Folded(f, error);
-  return n;
-}
-
-// How far odd vertex k sits from the middle of its edge in 3D: 0 at the 3D
-// midpoint, 1 at an endpoint.
-double LevelRefiner::Lopsidedness(uint32_t k) const {
-  const Edge& e = h_.OddEdge(j_, k);
-  const Vec3& m = choice_[k].position;
-  const double da = (m - pos_[e[0]]).norm(), db = (m - pos_[e[1]]).norm();
-  return da + db > 0.0 ? std::abs(da - db) / (da + db) : 1.0;
-}
-
-// Placement score of odd vertex k, smaller is better: folded faces around it
-// first, then whether it sits near an end of its edge, then the faces' error.
-LevelRefiner::PlacementScore LevelRefiner::ScorePlacement(uint32_t k) const {
-  PlacementScore s;
-  s.folds = FoldsAround(k, &s.error);
-  s.lopsided = Lopsidedness(k) > kMaxLopsidedness;
-  return s;
-}
-
-// Folds at a level multiply by four at every finer one (their children are
-// pierced from folded predictions), and so does a vertex placed next to an end
-// of its edge: where the parameterization is compressed the edges around it
-// then never shrink (armadillo claws: 0.02 of the diagonal from level 2 to 5).
-// So each level is cleaned before the next: an odd vertex of a folded face, or
-// one within kMaxLopsidedness of an end of its edge, tries its other admissible
-// hits, the parametric midpoint and the surface point closest to its
-// neighbours' average, and keeps the best ScorePlacement. Departure from Guskov
-// et al., who take the hit closest to the prediction.
-std::vector<uint32_t> LevelRefiner::RepairPlacements() {
-  const size_t nf = dom_.faces().size();
-  std::vector<uint8_t> suspect(choice_.size(), 0);
-  std::vector<uint8_t> touched(nf, 0);  // level-j faces whose children may be folded
-  ParallelFor(nf, [&](size_t begin, size_t end, size_t) {
-    for (size_t f = begin; f < end; ++f) {
-      for (uint32_t c = 0; c < 4; ++c) {
-        if (!Folded(static_cast<uint32_t>(4 * f + c))) continue;
-        touched[f] = 1;
-        for (int i = 0; i < 3; ++i) suspect[dom_.EdgeOf(static_cast<uint32_t>(f), i)] = 1;
-      }
-    }
-  });
-  for (uint32_t k = 0; k < choice_.size(); ++k) {
-    if (Lopsidedness(k) > kMaxLopsidedness) suspect[k] = 1;
-  }
-  Chart chart(dom_);
-  for (int pass = 0; pass < kRepairPasses; ++pass) {
-    bool changed = false;
-    for (uint32_t k = 0; k < choice_.size(); ++k) {
-      if (!suspect[k] || dom_.Sides(k).right == kNoNeighbour) continue;
-      suspect[k] = 0;
-      const PlacementScore before = ScorePlacement(k);
-      if (before.folds == 0 && !before.lopsided) continue;
-      if (TryAlternatives(k, before, &chart)) {
-        changed = true;
-        // The neighbours' faces changed too: look at them again.
-        for (uint32_t f : {dom_.Sides(k).left, dom_.Sides(k).right}) {
-          touched[f] = 1;
-          for (int i = 0; i < 3; ++i) suspect[dom_.EdgeOf(f, i)] = 1;
-        }
-      }
-    }
-    if (!changed) break;
-  }
-  std::vector<uint32_t> folded;
-  for (uint32_t f = 0; f < nf; ++f) {
-    if (!touched[f]) continue;
-    for (uint32_t c = 0; c < 4; ++c) {
-      if (Folded(4 * f + c)) folded.push_back(4 * f + c);
-    }
-  }
-  return folded;
-}
-
-bool LevelRefiner::TryAlternatives(uint32_t k, const PlacementScore& before, Chart* chart) {
-  std::vector<EdgeChoice> options = NormalCandidates(k, chart, kRepairCandidates);
-  EdgeChoice mid = MidpointChoice(k);
-  mid.position = fine_ ? FineMidpoint(k) : ForwardMap(dom_.Sides(k).left, mid.u, predicted_[k], chart);
-  mid.needs_forward = false;
-  options.push_back(mid);
-  for (const double blend : kRelaxBlends) {
-    EdgeChoice relaxed;
-    if (RelaxedChoice(k, blend, chart, &relaxed)) options.push_back(relaxed);
-  }
-  const EdgeChoice current = choice_[k];
-  EdgeChoice best = current;
-  PlacementScore best_score = before;
-  for (const EdgeChoice& o : options) {
-    choice_[k] = o;
-    if (!ChildrenValid(dom_.Sides(k).left) || !ChildrenValid(dom_.Sides(k).right)) continue;
-    const PlacementScore score = ScorePlacement(k);
-    if (score < best_score) {
-      best_score = score;
-      best = o;
-    }
-  }
-  choice_[k] = best;
-  return best.position != current.position;
 }
 
 void LevelRefiner::UpdateParams(std::vector<ParamPoint>* next) const {
@@ -712,7 +468,7 @@ double LevelRefiner::RmsError(const std::vector<Vec3>& fine_pos, const std::vect
   return next.empty() ? 0.0 : std::sqrt(sum / static_cast<double>(next.size()));
 }
 
-}  // namespace
+}  // namespace remesh_internal
 
 InputSurface::InputSurface(const Mesh& m, const TriangleBvh& b, std::vector<uint8_t> boundary)
     : mesh(&m), bvh(&b), is_boundary(std::move(boundary)) {
@@ -738,7 +494,7 @@ void RefineLevel(const SemiRegularHierarchy& hierarchy, int j, const InputSurfac
                  LevelStats* stats) {
   *stats = LevelStats();
   std::vector<Vec3> level = *positions;
-  LevelRefiner refiner(hierarchy, j, surface, &level, params);
+  remesh_internal::LevelRefiner refiner(hierarchy, j, surface, &level, params);
   refiner.Run(positions, kinds, stats);
   *params = refiner.TakeParams();
 }

@@ -28,6 +28,9 @@
 //    level-j faces and its chart image would be unfolded across all of them
 //    (bench meshes: folds 4-9x fewer, normal share 0.95 -> 0.99, no degenerate
 //    faces from failed forward maps).
+//  * Each level's folded faces and lopsided vertices are repaired before the
+//    next level is pierced from them (placement_repair.cpp), where Guskov et
+//    al. keep the hit closest to the prediction.
 //  * Boundary edges are never pierced: the new vertex is the parametric midpoint
 //    on the input's boundary polyline (VertexKind::kBoundary).
 #pragma once
