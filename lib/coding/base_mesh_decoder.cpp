@@ -80,6 +80,25 @@ Status CheckFaces(const Mesh& mesh, const std::string& what) {
   return Status::Ok();
 }
 
+// Types ConvertValue<float> reads as plain numbers (not bool, not invalid).
+bool IsNumericPositionType(draco::DataType type) {
+  switch (type) {
+    case draco::DT_INT8:
+    case draco::DT_UINT8:
+    case draco::DT_INT16:
+    case draco::DT_UINT16:
+    case draco::DT_INT32:
+    case draco::DT_UINT32:
+    case draco::DT_INT64:
+    case draco::DT_UINT64:
+    case draco::DT_FLOAT32:
+    case draco::DT_FLOAT64:
+      return true;
+    default:
+      return false;
+  }
+}
+
 StatusOr<Mesh> ConvertDracoMesh(const draco::Mesh& dm, const DracoMeshLimits& limits,
                                 const std::string& what) {
   if (dm.num_points() > limits.max_vertices || dm.num_faces() > limits.max_faces) {
@@ -89,6 +108,12 @@ StatusOr<Mesh> ConvertDracoMesh(const draco::Mesh& dm, const DracoMeshLimits& li
   const draco::PointAttribute* pos = dm.GetNamedAttribute(draco::GeometryAttribute::POSITION);
   if (pos == nullptr || pos->num_components() != 3) {
     return CorruptStream(what + ": no 3-component position attribute");
+  }
+  if (!IsNumericPositionType(pos->data_type())) {
+    // Draco converts a bool attribute by loading its bytes as bool: undefined
+    // behaviour for any byte but 0 and 1 (found by fuzz_eqm_decode).
+    return CorruptStream(what + ": position attribute of data type " +
+                         std::to_string(static_cast<int>(pos->data_type())) + " (must be a number type)");
   }
   Mesh mesh;
   mesh.positions.resize(dm.num_points());
