@@ -2,6 +2,7 @@
 // zerotree (embedded, open loop) or uniform coding, at a lambda, a bits-per-vertex
 // target or a PSNR target.
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <optional>
@@ -263,6 +264,12 @@ int RunEncode(int argc, char** argv) {
   const RemeshReport& remesh_report = source->remesh;
   const double remesh_seconds = source->remesh_seconds;
 
+  // Sizes jump between adjacent settings on small meshes; say so rather than
+  // pretend the target was met.
+  if (a.bpv > 0 && std::abs(report.bpv - a.bpv) > 0.03 * a.bpv) {
+    std::fprintf(stderr, "eqmesh encode: warning: nearest stream is %.3f bpv, %.1f %% from the %.3f bpv target\n",
+                 report.bpv, 100.0 * std::abs(report.bpv - a.bpv) / a.bpv, a.bpv);
+  }
   if (a.psnr > 0 && report.psnr_db < a.psnr) {
     std::fprintf(stderr, "eqmesh encode: warning: best PSNR %.2f dB is below the %.2f dB target\n",
                  report.psnr_db, a.psnr);

@@ -372,40 +372,109 @@ StatusOr<Pass> EncodeZerotreeForQuality(const Prepared& prep, const EncodeOption
   return FinishQualitySearch(std::move(passes), index, options, search.evaluations + 1);
 }
 
-StatusOr<Pass> EncodeWithTarget(const Prepared& prep, const EncodeOptions& options,
-                                std::deque<Renumbered>* cache) {
-  const int64_t start = LogCode(options.lambda);
-  // The evaluator keeps the latest pass so the chosen point's report survives.
+constexpr double kRateTolerance = 0.03;  // --bpv is met within 3 %
+
+bool WithinRate(double bpv, double target) { return std::abs(bpv - target) <= kRateTolerance * target; }
+
+// The EQ stream's size can jump between adjacent lambda codes (bunny, 6 levels,
+// 4 bpv: 3.86 -> 4.34 bpv, when most finest-level coefficients leave the dead
+// zone together), so no lambda meets the target. The tangential factor is the
+// stream's second rate knob and moves only the tangential bits: at the lambda
+// code of the pass nearest the target, search it for the rate (tangential code
+// = start - u, so the size grows with u as SearchForRate expects). Returns the
+// pass it ends on (nullopt when the search found nothing nearer).
+StatusOr<std::optional<Pass>> MatchRateWithTangential(const Prepared& prep, const EncodeOptions& options,
+                                                      std::deque<Renumbered>* cache, const Pass& nearest,
+                                                      int* evaluations) {
+  const int64_t lambda_code = nearest.report.lambda_code;
+  const int64_t start = LogCode(options.tangential_factor);
+  std::vector<Pass> passes;
+  std::vector<int64_t> pass_u;
+  RateEvaluator eval = [&](int64_t u) -> StatusOr<RatePoint> {
+    EncodeOptions o = options;
+    o.tangential_factor = FromLogCode(std::clamp(start - u, -bitstream::kMaxLogCode, bitstream::kMaxLogCode));
+    EQMESH_ASSIGN_OR_RETURN(Pass pass, EncodeAtCode(prep, o, lambda_code, cache));
+    RatePoint point;
+    point.lambda_code = u;
+    point.bpv = pass.report.bpv;
+    passes.push_back(std::move(pass));
+    pass_u.push_back(u);
+    return point;
+  };
+  RateSearchReport search;
+  EQMESH_ASSIGN_OR_RETURN(const RatePoint chosen, SearchForRate(eval, options.target_bpv, 0, kRateTolerance, &search));
+  *evaluations += search.evaluations;
+  if (std::abs(chosen.bpv - options.target_bpv) >= std::abs(nearest.report.bpv - options.target_bpv)) {
+    return std::optional<Pass>();
+  }
+  for (size_t i = 0; i < passes.size(); ++i) {
+    if (pass_u[i] == chosen.lambda_code) return std::optional<Pass>(std::move(passes[i]));
+  }
+  return InternalError("rate control lost its chosen tangential point");
+}
+
+StatusOr<Pass> EncodeForRate(const Prepared& prep, const EncodeOptions& options, std::deque<Renumbered>* cache) {
   std::vector<Pass> passes;
   RateEvaluator eval = [&](int64_t code) -> StatusOr<RatePoint> {
     EQMESH_ASSIGN_OR_RETURN(Pass pass, EncodeAtCode(prep, options, code, cache));
     RatePoint point;
     point.lambda_code = code;
     point.bpv = pass.report.bpv;
-    if (options.target_psnr > 0) {
-      EQMESH_ASSIGN_OR_RETURN(point.psnr_db, MeasurePsnr(pass.bytes, *options.original, kSearchSamples));
-      pass.report.psnr_db = point.psnr_db;
-    }
     passes.push_back(std::move(pass));
     return point;
   };
   RateSearchReport search;
-  RatePoint chosen;
-  if (options.target_bpv > 0) {
-    EQMESH_ASSIGN_OR_RETURN(chosen, SearchForRate(eval, options.target_bpv, start, 0.03, &search));
-  } else {
-    EQMESH_ASSIGN_OR_RETURN(chosen, SearchForQuality(eval, options.target_psnr + kSearchMarginDb, start, &search));
-    size_t index = 0;
-    while (index + 1 < passes.size() && passes[index].report.lambda_code != chosen.lambda_code) ++index;
-    return FinishQualitySearch(std::move(passes), index, options, search.evaluations);
+  const double target = options.target_bpv;
+  EQMESH_ASSIGN_OR_RETURN(const RatePoint chosen,
+                          SearchForRate(eval, target, LogCode(options.lambda), kRateTolerance, &search));
+  // The pass nearest the target, and the nearest one on the target's other side.
+  const Pass* nearest = nullptr;
+  for (const Pass& pass : passes) {
+    if (pass.report.lambda_code == chosen.lambda_code) nearest = &pass;
   }
-  for (Pass& pass : passes) {
-    if (pass.report.lambda_code == chosen.lambda_code) {
-      pass.report.rate_evaluations = search.evaluations;
-      return std::move(pass);
+  if (nearest == nullptr) return InternalError("rate control lost its chosen point");
+  const Pass* across = nullptr;
+  for (const Pass& pass : passes) {
+    const bool other_side = (pass.report.bpv < target) != (nearest->report.bpv < target);
+    if (other_side && (!across || std::abs(pass.report.bpv - target) < std::abs(across->report.bpv - target))) {
+      across = &pass;
     }
   }
-  return InternalError("rate control lost its chosen point");
+  Pass result = *nearest;
+  for (const Pass* start : {nearest, across}) {
+    if (start == nullptr || WithinRate(result.report.bpv, target)) continue;
+    EQMESH_ASSIGN_OR_RETURN(std::optional<Pass> refined,
+                            MatchRateWithTangential(prep, options, cache, *start, &search.evaluations));
+    if (refined && std::abs(refined->report.bpv - target) < std::abs(result.report.bpv - target)) {
+      result = std::move(*refined);
+    }
+  }
+  result.report.rate_evaluations = search.evaluations;
+  return result;
+}
+
+StatusOr<Pass> EncodeWithTarget(const Prepared& prep, const EncodeOptions& options,
+                                std::deque<Renumbered>* cache) {
+  if (options.target_bpv > 0) return EncodeForRate(prep, options, cache);
+  const int64_t start = LogCode(options.lambda);
+  // The evaluator keeps every pass so the chosen point's report survives.
+  std::vector<Pass> passes;
+  RateEvaluator eval = [&](int64_t code) -> StatusOr<RatePoint> {
+    EQMESH_ASSIGN_OR_RETURN(Pass pass, EncodeAtCode(prep, options, code, cache));
+    RatePoint point;
+    point.lambda_code = code;
+    point.bpv = pass.report.bpv;
+    EQMESH_ASSIGN_OR_RETURN(point.psnr_db, MeasurePsnr(pass.bytes, *options.original, kSearchSamples));
+    pass.report.psnr_db = point.psnr_db;
+    passes.push_back(std::move(pass));
+    return point;
+  };
+  RateSearchReport search;
+  EQMESH_ASSIGN_OR_RETURN(const RatePoint chosen,
+                          SearchForQuality(eval, options.target_psnr + kSearchMarginDb, start, &search));
+  size_t index = 0;
+  while (index + 1 < passes.size() && passes[index].report.lambda_code != chosen.lambda_code) ++index;
+  return FinishQualitySearch(std::move(passes), index, options, search.evaluations);
 }
 
 }  // namespace
