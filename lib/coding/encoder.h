@@ -34,7 +34,9 @@ struct EncodeOptions {
   // the search. Range (0, 2^200).
   double lambda = 1.0 / 64.0;
   // Targets (at most one may be > 0): bits per input vertex (hit within +-3 % by a
-  // search on lambda; needs input_vertices), or PSNR in dB of the decoded
+  // search on lambda, then on the tangential factor where the size jumps between
+  // adjacent lambda codes; the nearest stream when neither reaches it; needs
+  // input_vertices), or PSNR in dB of the decoded
   // full-resolution mesh against *original (smallest stream that meets it).
   double target_bpv = 0;
   double target_psnr = 0;
