@@ -84,6 +84,7 @@ nlohmann::json ToJson(const EncodeArgs& a, const RemeshReport& remesh, const Enc
   j["bytes"] = r.total_bytes;
   j["bpv"] = r.bpv;
   j["lambda"] = r.lambda;
+  j["tangential_factor"] = r.tangential_factor;
   j["base_bits"] = r.base_bits;
   j["header_bytes"] = r.header_bytes;
   j["base_bytes"] = r.base_bytes;

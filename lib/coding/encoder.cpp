@@ -196,6 +196,7 @@ Pass FinishPass(const StreamHeader& header, const Prepared& prep, const std::vec
   Pass pass;
   pass.bytes = Assemble(header, base, prep.kept_bytes, chunks, &pass.report);
   pass.report.lambda = header.lambda();
+  pass.report.tangential_factor = header.tangential_factor();
   pass.report.lambda_code = static_cast<int>(header.lambda_code);
   pass.report.base_bits = base_report.bits;
   if (options.input_vertices > 0) {

@@ -58,6 +58,7 @@ struct EncodeOptions {
 struct EncodeReport {
   double lambda = 0;          // as coded (after the log2 code)
   int lambda_code = 0;
+  double tangential_factor = 1;  // as coded; --bpv may have moved it (EncodeOptions)
   int base_bits = 0;          // Draco depth chosen for the base scaling values
   size_t header_bytes = 0;
   size_t base_bytes = 0;
