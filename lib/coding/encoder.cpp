@@ -442,8 +442,15 @@ StatusOr<Pass> EncodeForRate(const Prepared& prep, const EncodeOptions& options,
     }
   }
   Pass result = *nearest;
+  // Only a jump across the target is closed this way: with every pass on one
+  // side the target is out of this level count's reach (the level search's
+  // coarse candidates at high rates), and the tangential factor would not help.
+  if (across == nullptr) {
+    result.report.rate_evaluations = search.evaluations;
+    return result;
+  }
   for (const Pass* start : {nearest, across}) {
-    if (start == nullptr || WithinRate(result.report.bpv, target)) continue;
+    if (WithinRate(result.report.bpv, target)) break;
     EQMESH_ASSIGN_OR_RETURN(std::optional<Pass> refined,
                             MatchRateWithTangential(prep, options, cache, *start, &search.evaluations));
     if (refined && std::abs(refined->report.bpv - target) < std::abs(result.report.bpv - target)) {
