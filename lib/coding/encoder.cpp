@@ -414,33 +414,50 @@ StatusOr<std::optional<Pass>> MatchRateWithTangential(const Prepared& prep, cons
   return InternalError("rate control lost its chosen tangential point");
 }
 
-StatusOr<Pass> EncodeForRate(const Prepared& prep, const EncodeOptions& options, std::deque<Renumbered>* cache) {
-  std::vector<Pass> passes;
-  RateEvaluator eval = [&](int64_t code) -> StatusOr<RatePoint> {
+// A lambda-code evaluator that keeps every pass (so the chosen point's report
+// survives), measuring each one's PSNR when asked to.
+RateEvaluator RecordingEvaluator(const Prepared& prep, const EncodeOptions& options, std::deque<Renumbered>* cache,
+                                 bool measure, std::vector<Pass>* passes) {
+  return [&prep, &options, cache, measure, passes](int64_t code) -> StatusOr<RatePoint> {
     EQMESH_ASSIGN_OR_RETURN(Pass pass, EncodeAtCode(prep, options, code, cache));
     RatePoint point;
     point.lambda_code = code;
     point.bpv = pass.report.bpv;
-    passes.push_back(std::move(pass));
+    if (measure) {
+      EQMESH_ASSIGN_OR_RETURN(point.psnr_db, MeasurePsnr(pass.bytes, *options.original, kSearchSamples));
+      pass.report.psnr_db = point.psnr_db;
+    }
+    passes->push_back(std::move(pass));
     return point;
   };
+}
+
+// The pass nearest the target on the other side of it from `nearest` (null when
+// every pass lies on one side).
+const Pass* NearestAcross(const std::vector<Pass>& passes, const Pass& nearest, double target) {
+  const Pass* across = nullptr;
+  for (const Pass& pass : passes) {
+    const bool other_side = (pass.report.bpv < target) != (nearest.report.bpv < target);
+    if (other_side && (!across || std::abs(pass.report.bpv - target) < std::abs(across->report.bpv - target))) {
+      across = &pass;
+    }
+  }
+  return across;
+}
+
+StatusOr<Pass> EncodeForRate(const Prepared& prep, const EncodeOptions& options, std::deque<Renumbered>* cache) {
+  std::vector<Pass> passes;
+  const RateEvaluator eval = RecordingEvaluator(prep, options, cache, false, &passes);
   RateSearchReport search;
   const double target = options.target_bpv;
   EQMESH_ASSIGN_OR_RETURN(const RatePoint chosen,
                           SearchForRate(eval, target, LogCode(options.lambda), kRateTolerance, &search));
-  // The pass nearest the target, and the nearest one on the target's other side.
   const Pass* nearest = nullptr;
   for (const Pass& pass : passes) {
     if (pass.report.lambda_code == chosen.lambda_code) nearest = &pass;
   }
   if (nearest == nullptr) return InternalError("rate control lost its chosen point");
-  const Pass* across = nullptr;
-  for (const Pass& pass : passes) {
-    const bool other_side = (pass.report.bpv < target) != (nearest->report.bpv < target);
-    if (other_side && (!across || std::abs(pass.report.bpv - target) < std::abs(across->report.bpv - target))) {
-      across = &pass;
-    }
-  }
+  const Pass* across = NearestAcross(passes, *nearest, target);
   Pass result = *nearest;
   // Only a jump across the target is closed this way: with every pass on one
   // side the target is out of this level count's reach (the level search's
@@ -465,18 +482,8 @@ StatusOr<Pass> EncodeWithTarget(const Prepared& prep, const EncodeOptions& optio
                                 std::deque<Renumbered>* cache) {
   if (options.target_bpv > 0) return EncodeForRate(prep, options, cache);
   const int64_t start = LogCode(options.lambda);
-  // The evaluator keeps every pass so the chosen point's report survives.
   std::vector<Pass> passes;
-  RateEvaluator eval = [&](int64_t code) -> StatusOr<RatePoint> {
-    EQMESH_ASSIGN_OR_RETURN(Pass pass, EncodeAtCode(prep, options, code, cache));
-    RatePoint point;
-    point.lambda_code = code;
-    point.bpv = pass.report.bpv;
-    EQMESH_ASSIGN_OR_RETURN(point.psnr_db, MeasurePsnr(pass.bytes, *options.original, kSearchSamples));
-    pass.report.psnr_db = point.psnr_db;
-    passes.push_back(std::move(pass));
-    return point;
-  };
+  const RateEvaluator eval = RecordingEvaluator(prep, options, cache, true, &passes);
   RateSearchReport search;
   EQMESH_ASSIGN_OR_RETURN(const RatePoint chosen,
                           SearchForQuality(eval, options.target_psnr + kSearchMarginDb, start, &search));
