@@ -267,7 +267,7 @@ int RunEncode(int argc, char** argv) {
 
   // Sizes jump between adjacent settings on small meshes; say so rather than
   // pretend the target was met.
-  if (a.bpv > 0 && std::abs(report.bpv - a.bpv) > 0.03 * a.bpv) {
+  if (a.bpv > 0 && std::abs(report.bpv - a.bpv) > kBpvTolerance * a.bpv) {
     std::fprintf(stderr, "eqmesh encode: warning: nearest stream is %.3f bpv, %.1f %% from the %.3f bpv target\n",
                  report.bpv, 100.0 * std::abs(report.bpv - a.bpv) / a.bpv, a.bpv);
   }

@@ -373,9 +373,7 @@ StatusOr<Pass> EncodeZerotreeForQuality(const Prepared& prep, const EncodeOption
   return FinishQualitySearch(std::move(passes), index, options, search.evaluations + 1);
 }
 
-constexpr double kRateTolerance = 0.03;  // --bpv is met within 3 %
-
-bool WithinRate(double bpv, double target) { return std::abs(bpv - target) <= kRateTolerance * target; }
+bool WithinRate(double bpv, double target) { return std::abs(bpv - target) <= kBpvTolerance * target; }
 
 // The EQ stream's size can jump between adjacent lambda codes (bunny, 6 levels,
 // 4 bpv: 3.86 -> 4.34 bpv, when most finest-level coefficients leave the dead
@@ -403,7 +401,7 @@ StatusOr<std::optional<Pass>> MatchRateWithTangential(const Prepared& prep, cons
     return point;
   };
   RateSearchReport search;
-  EQMESH_ASSIGN_OR_RETURN(const RatePoint chosen, SearchForRate(eval, options.target_bpv, 0, kRateTolerance, &search));
+  EQMESH_ASSIGN_OR_RETURN(const RatePoint chosen, SearchForRate(eval, options.target_bpv, 0, kBpvTolerance, &search));
   *evaluations += search.evaluations;
   if (std::abs(chosen.bpv - options.target_bpv) >= std::abs(nearest.report.bpv - options.target_bpv)) {
     return std::optional<Pass>();
@@ -451,7 +449,7 @@ StatusOr<Pass> EncodeForRate(const Prepared& prep, const EncodeOptions& options,
   RateSearchReport search;
   const double target = options.target_bpv;
   EQMESH_ASSIGN_OR_RETURN(const RatePoint chosen,
-                          SearchForRate(eval, target, LogCode(options.lambda), kRateTolerance, &search));
+                          SearchForRate(eval, target, LogCode(options.lambda), kBpvTolerance, &search));
   const Pass* nearest = nullptr;
   for (const Pass& pass : passes) {
     if (pass.report.lambda_code == chosen.lambda_code) nearest = &pass;

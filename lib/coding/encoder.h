@@ -25,6 +25,9 @@
 
 namespace eqmesh {
 
+// How near a --bpv target the encoder must land (relative); the CLI warns beyond it.
+constexpr double kBpvTolerance = 0.03;
+
 struct EncodeOptions {
   bitstream::TransformId transform = bitstream::TransformId::kUnlifted;
   bitstream::CoderId coder = bitstream::CoderId::kEq;
