@@ -7,7 +7,9 @@
 // Departures: the encoder is closed-loop (details are computed against the
 // geometry the decoder reconstructs, level by level, so quantization error does
 // not accumulate); the base scaling values' quantization depth is chosen by the
-// same J = R + lambda D (base_mesh_encoder.h); see encoder.cpp for the exact loop.
+// same J = R + lambda D (base_mesh_encoder.h); the EQ chunks' lambda doubles per
+// level towards the base (level_encoder.cpp: a coarse error spreads over a larger
+// area); see encoder.cpp for the exact loop.
 // Coder kZerotree (PGC baseline) is open loop instead, one embedded payload for all
 // levels (zerotree_encoder.h): a bpv target cuts it to the byte budget exactly (no
 // lambda search), lambda picks its last bit plane, a PSNR target searches the budget.

@@ -2,6 +2,7 @@
 #include "remesh/untangle.h"
 
 #include <algorithm>
+#include <optional>
 
 #include <Eigen/Geometry>
 
@@ -13,7 +14,7 @@ namespace {
 
 constexpr int kPasses = 4;
 // Blends between a vertex's position and its neighbours' centroid that are tried.
-constexpr double kBlends[] = {1.0, 0.5};
+constexpr double kBlends[] = {1.0, 0.75, 0.5, 0.25};
 constexpr double kMaxErrorGrowth = 2.0;
 // Cluster smoothing: rings of neighbours around the folds, Jacobi sweeps.
 constexpr int kClusterRings = 2;
@@ -21,6 +22,9 @@ constexpr int kClusterIterations = 8;
 // Larger clusters are whole folded regions (dragon_vrip's crevices), where a
 // Jacobi smoothing is slow and was never kept.
 constexpr size_t kMaxClusterVertices = 256;
+// Moves of coarser vertices stop short of making the remesh's normal share
+// (the remesh bar, bench/README_remesh.md) drop below this.
+constexpr double kMinNormalShare = 0.90;
 
 struct Untangler {
   const std::vector<Face>& faces;
@@ -102,7 +106,21 @@ struct Untangler {
     return (x[g[1]] - x[g[0]]).cross(x[g[2]] - x[g[0]]);
   }
 
+  // Where v would go for blend t towards its neighbours' centroid: the closest
+  // same-facing input point, or the blend itself off the surface.
+  std::optional<Vec3> Candidate(uint32_t v, const Vec3& centroid, const Vec3& facing, double t,
+                                bool off_surface) const {
+    const Vec3 target = (1.0 - t) * pos[v] + t * centroid;
+    if (off_surface) return target;
+    const ClosestPointResult cp = ProjectFacing(target, facing, FanRadius(v));
+    if (!cp.found()) return std::nullopt;
+    return cp.point;
+  }
+
   // Moves v to the best candidate if that folds fewer faces; true if moved.
+  // Candidates on the input come first; off it only where no surface point
+  // helps (at a crease the closest same-facing point of a blend is often the
+  // vertex's own place again), a small error for a fold removed.
   bool Improve(uint32_t v) {
     const std::pair<size_t, double> before = Score(v);
     if (before.first == 0) return false;
@@ -111,21 +129,23 @@ struct Untangler {
     const Vec3 facing = InputNormal(v);
     Vec3 best = start;
     std::pair<size_t, double> best_score = before;
-
-    for (double t : kBlends) {
-      const Vec3 target = (1.0 - t) * start + t * centroid;
-      const ClosestPointResult cp = ProjectFacing(target, facing, FanRadius(v));
-      if (!cp.found()) continue;
-      pos[v] = cp.point;
-      const std::pair<size_t, double> score = Score(v);
-      // Fewer folds, but not at any price: the faces' error may grow at most
-      // kMaxErrorGrowth-fold (a fold across a thin part is better than a
-      // vertex dragged onto the wrong side of it).
-      if (score.second > kMaxErrorGrowth * before.second) continue;
-      if (score < best_score) {
-        best_score = score;
-        best = cp.point;
+    for (const bool off_surface : {false, true}) {
+      for (double t : kBlends) {
+        const std::optional<Vec3> candidate = Candidate(v, centroid, facing, t, off_surface);
+        if (!candidate) continue;
+        pos[v] = *candidate;
+        const std::pair<size_t, double> score = Score(v);
+        pos[v] = start;
+        // Fewer folds, but not at any price: the faces' error may grow at most
+        // kMaxErrorGrowth-fold (a fold across a thin part is better than a
+        // vertex dragged onto the wrong side of it).
+        if (score.second > kMaxErrorGrowth * before.second) continue;
+        if (score < best_score) {
+          best_score = score;
+          best = *candidate;
+        }
       }
+      if (best != start) break;
     }
     pos[v] = best;
     return best != start;
@@ -229,31 +249,68 @@ struct Untangler {
   }
 };
 
-// Vertices of the last two levels move (not boundary ones): most folds left
-// after the last refinement have a corner of the level before it, which the
-// per-level repair could no longer move.
-std::vector<uint8_t> MovableVertices(const SemiRegularHierarchy& h, const std::vector<VertexKind>& kinds) {
-  const int levels = h.levels();
+// Vertices at or after `first` that may move: neither base nor boundary ones.
+std::vector<uint8_t> MovableFrom(uint32_t first, const std::vector<VertexKind>& kinds) {
   std::vector<uint8_t> movable(kinds.size(), 0);
-  const uint32_t first = h.NumVertices(std::max(0, levels - 2));
-  for (uint32_t v = first; v < kinds.size(); ++v) {
+  for (size_t v = first; v < kinds.size(); ++v) {
     movable[v] = kinds[v] != VertexKind::kBoundary && kinds[v] != VertexKind::kBase;
   }
   return movable;
 }
 
-// A moved vertex is no longer where its prediction's normal put it, nor are the
-// finest vertices predicted from it: all of them become non-normal. Returns how
-// many normal vertices that concerned.
+// Single-vertex moves, pass after pass, starting from the corners of the faces in
+// `folded` that still fold; marks what moved.
+void MoveSingleVertices(Untangler* u, const std::vector<uint32_t>& folded,
+                        const std::vector<uint8_t>& movable, std::vector<uint8_t>* moved) {
+  std::vector<uint8_t> suspect(u->pos.size(), 0);
+  for (uint32_t f : folded) {
+    if (!u->Folded(f, nullptr)) continue;
+    for (uint32_t v : u->faces[f]) suspect[v] = 1;
+  }
+  for (int pass = 0; pass < kPasses; ++pass) {
+    bool changed = false;
+    for (uint32_t v = static_cast<uint32_t>(u->pos.size()); v-- > 0;) {
+      if (!suspect[v] || !movable[v]) continue;
+      suspect[v] = 0;
+      if (!u->Improve(v)) continue;
+      changed = true;
+      (*moved)[v] = 1;
+      // Its neighbours' faces changed: they may now improve too.
+      for (uint32_t n = u->offsets[v]; n < u->offsets[v + 1]; ++n) {
+        for (uint32_t w : u->faces[u->incident[n]]) suspect[w] = 1;
+      }
+    }
+    if (!changed) break;
+  }
+}
+
+// Level-j vertices whose position or vertex normal a move changed: the moved
+// ones and their level-j one-ring (frame normals blend the stencil's vertex
+// normals, butterfly.h).
+std::vector<uint8_t> DirtyAtLevel(const SemiRegularHierarchy& h, int j, const std::vector<uint8_t>& moved) {
+  std::vector<uint8_t> dirty(h.NumVertices(j), 0);
+  for (const Face& f : h.Faces(j)) {
+    if (moved[f[0]] || moved[f[1]] || moved[f[2]]) dirty[f[0]] = dirty[f[1]] = dirty[f[2]] = 1;
+  }
+  return dirty;
+}
+
+// A moved vertex is no longer where its prediction's normal put it, nor is any
+// later vertex whose prediction or frame a move changed, at every finer
+// refinement (a vertex of level j is in the stencils of all later levels): all
+// of them become non-normal. Returns how many normal vertices that concerned.
 size_t MarkMovedNonNormal(const SemiRegularHierarchy& h, const std::vector<uint8_t>& moved,
                           std::vector<VertexKind>* kinds) {
   std::vector<uint8_t> affected = moved;
-  const int last = h.levels() - 1;
-  const StencilTable stencils = BuildButterflyStencils(h, last);
-  const uint32_t first_odd = h.NumVertices(last);
-  for (uint32_t k = 0; k < stencils.size(); ++k) {
-    for (uint32_t i = stencils.offsets[k]; i < stencils.offsets[k + 1]; ++i) {
-      if (moved[stencils.indices[i]]) affected[first_odd + k] = 1;
+  for (int j = 0; j < h.levels(); ++j) {
+    const std::vector<uint8_t> dirty = DirtyAtLevel(h, j, moved);
+    if (std::find(dirty.begin(), dirty.end(), 1) == dirty.end()) continue;
+    const StencilTable stencils = BuildButterflyStencils(h, j);
+    const uint32_t first_odd = h.NumVertices(j);
+    for (uint32_t k = 0; k < stencils.size(); ++k) {
+      for (uint32_t i = stencils.offsets[k]; i < stencils.offsets[k + 1]; ++i) {
+        if (dirty[stencils.indices[i]]) affected[first_odd + k] = 1;
+      }
     }
   }
   size_t count = 0;
@@ -266,36 +323,48 @@ size_t MarkMovedNonNormal(const SemiRegularHierarchy& h, const std::vector<uint8
   return count;
 }
 
+// Share of the odd, non-boundary vertices that are normal (RemeshReport's
+// normal_fraction).
+double NormalShare(const SemiRegularHierarchy& h, const std::vector<VertexKind>& kinds) {
+  size_t normal = 0, counted = 0;
+  for (size_t v = h.NumVertices(0); v < kinds.size(); ++v) {
+    if (kinds[v] == VertexKind::kBoundary) continue;
+    ++counted;
+    normal += kinds[v] == VertexKind::kNormal;
+  }
+  return counted ? static_cast<double>(normal) / static_cast<double>(counted) : 1.0;
+}
+
 }  // namespace
 
 size_t UntangleFinestLevel(const SemiRegularHierarchy& hierarchy, const InputSurface& surface,
                            const std::vector<uint32_t>& folded, std::vector<Vec3>* positions,
                            std::vector<VertexKind>* kinds) {
-  if (hierarchy.levels() < 1 || folded.empty()) return 0;
-  Untangler u(hierarchy.Faces(hierarchy.levels()), surface, positions);
-  const std::vector<uint8_t> movable = MovableVertices(hierarchy, *kinds);
-  std::vector<uint8_t> suspect(positions->size(), 0), moved(positions->size(), 0);
-  for (uint32_t f : folded) {
-    for (uint32_t v : u.faces[f]) suspect[v] = 1;
-  }
-  for (int pass = 0; pass < kPasses; ++pass) {
-    bool changed = false;
-    for (uint32_t v = 0; v < positions->size(); ++v) {
-      if (!suspect[v] || !movable[v]) continue;
-      suspect[v] = 0;
-      if (!u.Improve(v)) continue;
-      changed = true;
-      moved[v] = 1;
-      // Its neighbours' faces changed: they may now improve too.
-      for (uint32_t n = u.offsets[v]; n < u.offsets[v + 1]; ++n) {
-        for (uint32_t w : u.faces[u.incident[n]]) suspect[w] = 1;
-      }
-    }
-    if (!changed) break;
-  }
-  for (const std::vector<uint32_t>& cluster : u.FoldClusters(folded, movable)) {
+  const int levels = hierarchy.levels();
+  if (levels < 1 || folded.empty()) return 0;
+  Untangler u(hierarchy.Faces(levels), surface, positions);
+  std::vector<uint8_t> moved(positions->size(), 0);
+  // The last two levels first: a move there makes few vertices non-normal.
+  const std::vector<uint8_t> fine = MovableFrom(hierarchy.NumVertices(std::max(0, levels - 2)), *kinds);
+  MoveSingleVertices(&u, folded, fine, &moved);
+  for (const std::vector<uint32_t>& cluster : u.FoldClusters(folded, fine)) {
     if (!u.SmoothCluster(cluster)) continue;
     for (uint32_t v : cluster) moved[v] = 1;
+  }
+  // Then coarser levels for what still folds, as deep as the normal share allows:
+  // a coarse vertex's move makes every later vertex predicted from it non-normal.
+  const std::vector<Vec3> fine_positions = *positions;
+  const std::vector<uint8_t> fine_moved = moved;
+  for (int first = 0; first < levels - 2; ++first) {
+    MoveSingleVertices(&u, folded, MovableFrom(hierarchy.NumVertices(first), *kinds), &moved);
+    std::vector<VertexKind> trial = *kinds;
+    const size_t marked = MarkMovedNonNormal(hierarchy, moved, &trial);
+    if (NormalShare(hierarchy, trial) >= kMinNormalShare) {
+      *kinds = std::move(trial);
+      return marked;
+    }
+    *positions = fine_positions;
+    moved = fine_moved;
   }
   return MarkMovedNonNormal(hierarchy, moved, kinds);
 }

@@ -2,12 +2,14 @@
 //
 // Departure from Guskov et al. 2000 (whose remesh has no such pass): a face of
 // the finest level that faces away from the input (quality_checks.h) gets its
-// corners of the last two levels moved, one at a time, to the input point
-// closest to (or half-way to) their neighbours' centroid on same-facing input
-// triangles, when that folds fewer of the faces around them; clusters where no
-// single move helps are smoothed together. No parameter is needed any more, so
-// the moves are free in 3D; moved vertices, and the finest vertices predicted
-// from them, become non-normal. Boundary and base vertices never move.
+// corners moved, one at a time, to the input point closest to (or part-way to)
+// their neighbours' centroid on same-facing input triangles, or to the blend
+// itself where no surface point helps, when that folds fewer of the faces around
+// them; clusters where no single move helps are smoothed together. Corners of
+// every level may move (most folds have a corner from a coarser level than the
+// last two), boundary and base vertices never do. No parameter is needed any
+// more, so the moves are free in 3D; moved vertices, and every later vertex whose
+// butterfly prediction or frame they enter, become non-normal.
 #pragma once
 
 #include <cstddef>

@@ -56,6 +56,7 @@ const std::vector<Sample>& Samples() {
     const std::string data = std::string(EQMESH_SOURCE_DIR) + "/tests/codec/data/";
     s.push_back({"golden_v1_1", testing::ReadBytes(data + "golden_v1_1.eqm")});
     s.push_back({"golden_v1_0", testing::ReadBytes(data + "golden_v1_0.eqm")});
+    s.push_back({"golden_v1_1_single_lambda", testing::ReadBytes(data + "golden_v1_1_single_lambda.eqm")});
     return s;
   }();
   return samples;

@@ -20,12 +20,16 @@
 namespace eqmesh::testing {
 namespace {
 
-constexpr uint64_t kGoldenStreamHash = 0x0a48ffd6409ed416ull;
-constexpr uint64_t kGoldenGeometryHash = 0x71e7acd35de5e8d0ull;
+constexpr uint64_t kGoldenStreamHash = 0xc1867f0ab830794full;
+constexpr uint64_t kGoldenGeometryHash = 0x1e3b46a8d3b4d912ull;
+// The golden the encoder wrote before its per-level lambda (session 6; same
+// format): a decoder must still give the same mesh for it.
+constexpr uint64_t kSingleLambdaGoldenGeometryHash = 0x71e7acd35de5e8d0ull;
 // Whole pipeline on the bundled sample; re-pinned for the session-4 remesher
 // (base collapse cost, chart consistency, 3D refinement, placement repair,
-// finest-level untangling).
-constexpr uint64_t kBlobStreamHash = 0x555a1ebdb73fd8b6ull;
+// finest-level untangling), then for session 6 (untangling of coarser levels,
+// the encoder's per-level lambda).
+constexpr uint64_t kBlobStreamHash = 0xde53d3de01c8fbb6ull;
 
 // Positions (float32, as every consumer stores them) then indices.
 uint64_t GeometryHash(const Mesh& mesh) {
@@ -60,6 +64,11 @@ TEST(Determinism, GoldenStreamAndItsGeometryHaveThePinnedHashes) {
   auto mesh = Decode(golden.data(), golden.size());
   ASSERT_TRUE(mesh.ok()) << mesh.status().ToString();
   EXPECT_EQ(GeometryHash(*mesh), kGoldenGeometryHash) << Hex(GeometryHash(*mesh));
+  const std::vector<uint8_t> old = ReadFileOrEmpty(std::string(EQMESH_SOURCE_DIR) +
+                                                   "/tests/codec/data/golden_v1_1_single_lambda.eqm");
+  auto old_mesh = Decode(old.data(), old.size());
+  ASSERT_TRUE(old_mesh.ok()) << old_mesh.status().ToString();
+  EXPECT_EQ(GeometryHash(*old_mesh), kSingleLambdaGoldenGeometryHash) << Hex(GeometryHash(*old_mesh));
 }
 
 // Remesh + encode of the bundled sample, the whole pipeline.
