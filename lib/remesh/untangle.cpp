@@ -2,6 +2,7 @@
 #include "remesh/untangle.h"
 
 #include <algorithm>
+#include <array>
 #include <optional>
 
 #include <Eigen/Geometry>
@@ -26,14 +27,41 @@ constexpr size_t kMaxClusterVertices = 256;
 // (the remesh bar, bench/README_remesh.md) drop below this.
 constexpr double kMinNormalShare = 0.90;
 
+// Edges of `mesh` that only one face uses (its boundary curves).
+std::vector<std::array<uint32_t, 2>> InputBoundaryEdges(const Mesh& mesh) {
+  std::vector<std::array<uint32_t, 2>> edges;
+  for (const Face& f : mesh.faces) {
+    for (int c = 0; c < 3; ++c) edges.push_back({std::min(f[c], f[(c + 1) % 3]), std::max(f[c], f[(c + 1) % 3])});
+  }
+  std::sort(edges.begin(), edges.end());
+  std::vector<std::array<uint32_t, 2>> once;
+  for (size_t i = 0; i < edges.size();) {
+    size_t j = i;
+    while (j < edges.size() && edges[j] == edges[i]) ++j;
+    if (j - i == 1) once.push_back(edges[i]);
+    i = j;
+  }
+  return once;
+}
+
 struct Untangler {
   const std::vector<Face>& faces;
   const InputSurface& surface;
   std::vector<Vec3>& pos;
   std::vector<uint32_t> offsets, incident;  // vertex -> faces (CSR)
+  const std::vector<VertexKind>& kinds;
+  std::vector<std::array<uint32_t, 2>> input_boundary;  // input edges with one face, by lower x
+  double longest_boundary_edge = 0.0;
 
-  Untangler(const std::vector<Face>& finest, const InputSurface& s, std::vector<Vec3>* p)
-      : faces(finest), surface(s), pos(*p) {
+  Untangler(const std::vector<Face>& finest, const InputSurface& s, std::vector<Vec3>* p,
+            const std::vector<VertexKind>& k)
+      : faces(finest), surface(s), pos(*p), kinds(k), input_boundary(InputBoundaryEdges(*s.mesh)) {
+    const std::vector<Vec3>& x = s.mesh->positions;
+    std::sort(input_boundary.begin(), input_boundary.end(), [&](const auto& e, const auto& f) {
+      const double ex = std::min(x[e[0]].x(), x[e[1]].x()), fx = std::min(x[f[0]].x(), x[f[1]].x());
+      return ex < fx || (ex == fx && e < f);
+    });
+    for (const auto& e : input_boundary) longest_boundary_edge = std::max(longest_boundary_edge, (x[e[1]] - x[e[0]]).norm());
     offsets.assign(pos.size() + 1, 0);
     for (const Face& t : faces) {
       for (uint32_t v : t) ++offsets[v + 1];
@@ -62,7 +90,50 @@ struct Untangler {
     return s;
   }
 
+  // Closest point of the input's boundary curves to `target` within `reach`
+  // (the edges are sorted by their lower x, so only a slab is scanned).
+  std::optional<Vec3> ProjectBoundary(const Vec3& target, double reach) const {
+    const std::vector<Vec3>& x = surface.mesh->positions;
+    std::optional<Vec3> best;
+    double best_d = reach * reach;
+    const auto lower_x = [&](const std::array<uint32_t, 2>& e) { return std::min(x[e[0]].x(), x[e[1]].x()); };
+    auto it = std::upper_bound(input_boundary.begin(), input_boundary.end(), target.x() + reach,
+                               [&](double value, const std::array<uint32_t, 2>& e) { return value < lower_x(e); });
+    while (it != input_boundary.begin()) {
+      const std::array<uint32_t, 2>& e = *--it;
+      if (lower_x(e) < target.x() - reach - longest_boundary_edge) break;
+      const Vec3 a = x[e[0]], d = x[e[1]] - x[e[0]];
+      const double len2 = d.squaredNorm();
+      const double t = len2 > 0 ? std::clamp((target - a).dot(d) / len2, 0.0, 1.0) : 0.0;
+      const Vec3 p = a + t * d;
+      const double dist = (p - target).squaredNorm();
+      if (dist <= best_d) {
+        best_d = dist;
+        best = p;
+      }
+    }
+    return best;
+  }
+
+  // A boundary vertex slides between its boundary neighbours.
+  Vec3 BoundaryNeighbourMidpoint(uint32_t v) const {
+    Vec3 sum = Vec3::Zero();
+    int count = 0;
+    std::vector<uint32_t> seen;
+    for (uint32_t n = offsets[v]; n < offsets[v + 1]; ++n) {
+      for (uint32_t w : faces[incident[n]]) {
+        if (w == v || (kinds[w] != VertexKind::kBoundary && kinds[w] != VertexKind::kBase)) continue;
+        if (std::find(seen.begin(), seen.end(), w) != seen.end()) continue;
+        seen.push_back(w);
+        sum += pos[w];
+        ++count;
+      }
+    }
+    return count == 2 ? Vec3(sum / 2.0) : pos[v];
+  }
+
   Vec3 NeighbourCentroid(uint32_t v) const {
+    if (kinds[v] == VertexKind::kBoundary) return BoundaryNeighbourMidpoint(v);
     Vec3 sum = Vec3::Zero();
     int count = 0;
     for (uint32_t n = offsets[v]; n < offsets[v + 1]; ++n) {
@@ -111,6 +182,10 @@ struct Untangler {
   std::optional<Vec3> Candidate(uint32_t v, const Vec3& centroid, const Vec3& facing, double t,
                                 bool off_surface) const {
     const Vec3 target = (1.0 - t) * pos[v] + t * centroid;
+    if (kinds[v] == VertexKind::kBoundary) {
+      if (off_surface) return std::nullopt;
+      return ProjectBoundary(target, FanRadius(v));
+    }
     if (off_surface) return target;
     const ClosestPointResult cp = ProjectFacing(target, facing, FanRadius(v));
     if (!cp.found()) return std::nullopt;
@@ -236,9 +311,8 @@ struct Untangler {
     for (int it = 0; it < kClusterIterations; ++it) {
       for (size_t i = 0; i < cluster.size(); ++i) {
         const uint32_t v = cluster[i];
-        const Vec3 facing = InputNormal(v);
-        const ClosestPointResult cp = ProjectFacing(NeighbourCentroid(v), facing, FanRadius(v));
-        next[i] = cp.found() ? cp.point : pos[v];
+        const std::optional<Vec3> moved = Candidate(v, NeighbourCentroid(v), InputNormal(v), 1.0, false);
+        next[i] = moved ? *moved : pos[v];
       }
       for (size_t i = 0; i < cluster.size(); ++i) pos[cluster[i]] = next[i];
     }
@@ -249,11 +323,12 @@ struct Untangler {
   }
 };
 
-// Vertices at or after `first` that may move: neither base nor boundary ones.
+// Vertices at or after `first` that may move: all but base vertices (boundary
+// ones slide along the input's boundary curves).
 std::vector<uint8_t> MovableFrom(uint32_t first, const std::vector<VertexKind>& kinds) {
   std::vector<uint8_t> movable(kinds.size(), 0);
   for (size_t v = first; v < kinds.size(); ++v) {
-    movable[v] = kinds[v] != VertexKind::kBoundary && kinds[v] != VertexKind::kBase;
+    movable[v] = kinds[v] != VertexKind::kBase;
   }
   return movable;
 }
@@ -269,7 +344,7 @@ void MoveSingleVertices(Untangler* u, const std::vector<uint32_t>& folded,
   }
   for (int pass = 0; pass < kPasses; ++pass) {
     bool changed = false;
-    for (uint32_t v = static_cast<uint32_t>(u->pos.size()); v-- > 0;) {
+    for (uint32_t v = 0; v < u->pos.size(); ++v) {
       if (!suspect[v] || !movable[v]) continue;
       suspect[v] = 0;
       if (!u->Improve(v)) continue;
@@ -335,6 +410,23 @@ double NormalShare(const SemiRegularHierarchy& h, const std::vector<VertexKind>&
   return counted ? static_cast<double>(normal) / static_cast<double>(counted) : 1.0;
 }
 
+// Single moves of the vertices from level `first` on, then cluster smoothing; returns the kinds the moves leave (moved vertices and all
+// they enter become non-normal) and how many normal vertices that concerned.
+std::pair<std::vector<VertexKind>, size_t> UntangleFrom(const SemiRegularHierarchy& h, int first,
+                                                        const std::vector<uint32_t>& folded,
+                                                        const std::vector<VertexKind>& kinds, Untangler* u) {
+  std::vector<uint8_t> moved(u->pos.size(), 0);
+  const std::vector<uint8_t> movable = MovableFrom(h.NumVertices(first), kinds);
+  MoveSingleVertices(u, folded, movable, &moved);
+  for (const std::vector<uint32_t>& cluster : u->FoldClusters(folded, movable)) {
+    if (!u->SmoothCluster(cluster)) continue;
+    for (uint32_t v : cluster) moved[v] = 1;
+  }
+  std::vector<VertexKind> out = kinds;
+  const size_t marked = MarkMovedNonNormal(h, moved, &out);
+  return {std::move(out), marked};
+}
+
 }  // namespace
 
 size_t UntangleFinestLevel(const SemiRegularHierarchy& hierarchy, const InputSurface& surface,
@@ -342,31 +434,22 @@ size_t UntangleFinestLevel(const SemiRegularHierarchy& hierarchy, const InputSur
                            std::vector<VertexKind>* kinds) {
   const int levels = hierarchy.levels();
   if (levels < 1 || folded.empty()) return 0;
-  Untangler u(hierarchy.Faces(levels), surface, positions);
-  std::vector<uint8_t> moved(positions->size(), 0);
-  // The last two levels first: a move there makes few vertices non-normal.
-  const std::vector<uint8_t> fine = MovableFrom(hierarchy.NumVertices(std::max(0, levels - 2)), *kinds);
-  MoveSingleVertices(&u, folded, fine, &moved);
-  for (const std::vector<uint32_t>& cluster : u.FoldClusters(folded, fine)) {
-    if (!u.SmoothCluster(cluster)) continue;
-    for (uint32_t v : cluster) moved[v] = 1;
-  }
-  // Then coarser levels for what still folds, as deep as the normal share allows:
-  // a coarse vertex's move makes every later vertex predicted from it non-normal.
-  const std::vector<Vec3> fine_positions = *positions;
-  const std::vector<uint8_t> fine_moved = moved;
-  for (int first = 0; first < levels - 2; ++first) {
-    MoveSingleVertices(&u, folded, MovableFrom(hierarchy.NumVertices(first), *kinds), &moved);
-    std::vector<VertexKind> trial = *kinds;
-    const size_t marked = MarkMovedNonNormal(hierarchy, moved, &trial);
-    if (NormalShare(hierarchy, trial) >= kMinNormalShare) {
+  Untangler u(hierarchy.Faces(levels), surface, positions, *kinds);
+  // Every level may move, as deep as the normal share allows (a coarse vertex's
+  // move makes every later vertex predicted from it non-normal); the last two
+  // levels always may.
+  const std::vector<Vec3> start = *positions;
+  const int last_two = std::max(0, levels - 2);
+  // A remesh already below the floor (dragon_vrip's) gets the last two levels only.
+  const int deepest = NormalShare(hierarchy, *kinds) >= kMinNormalShare ? 0 : last_two;
+  for (int first = deepest;; ++first) {
+    auto [trial, marked] = UntangleFrom(hierarchy, std::min(first, last_two), folded, *kinds, &u);
+    if (first >= last_two || NormalShare(hierarchy, trial) >= kMinNormalShare) {
       *kinds = std::move(trial);
       return marked;
     }
-    *positions = fine_positions;
-    moved = fine_moved;
+    *positions = start;
   }
-  return MarkMovedNonNormal(hierarchy, moved, kinds);
 }
 
 }  // namespace eqmesh

@@ -2,6 +2,10 @@
 // topology kept, no folds.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <limits>
+#include <map>
+
 #include "mesh/mesh_io.h"
 #include "remesh/remesh.h"
 #include "remesh_checks.h"
@@ -90,6 +94,47 @@ void CheckSharedMesh(const std::string& name, int64_t euler, double min_normal) 
   EXPECT_GE(run.report.normal_fraction, min_normal) << name;
   EXPECT_LE(run.report.base_vertices, std::max<size_t>(8, input->positions.size() * 3 / 1000 + 1)) << name;
   ExpectClosedGenus(run.mesh, euler);
+}
+
+// Largest distance of a point set to the segments of the input's boundary edges
+// (brute force: a test-sized boundary).
+double MaxDistanceToBoundaryEdges(const std::vector<Vec3>& points, const Mesh& input) {
+  std::map<std::pair<uint32_t, uint32_t>, int> uses;
+  for (const Face& f : input.faces) {
+    for (int c = 0; c < 3; ++c) ++uses[std::minmax(f[c], f[(c + 1) % 3])];
+  }
+  double worst = 0.0;
+  for (const Vec3& p : points) {
+    double best = std::numeric_limits<double>::infinity();
+    for (const auto& [edge, count] : uses) {
+      if (count != 1) continue;
+      const Vec3 a = input.positions[edge.first], d = input.positions[edge.second] - a;
+      const double t = std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+      best = std::min(best, (a + t * d - p).norm());
+    }
+    worst = std::max(worst, best);
+  }
+  return worst;
+}
+
+// The untangler slides boundary vertices along the holes (session 6): they must
+// stay on the input's boundary curves, the holes stay holes.
+TEST(Remesh, StanfordBunnyBoundaryVerticesStayOnItsHoles) {
+  if (!testing::HaveSharedMeshes()) GTEST_SKIP() << "shared meshes absent";
+  auto input = ReadMesh(testing::SharedPath("meshes/bench/stanford-bunny.obj"));
+  ASSERT_TRUE(input.ok()) << input.status().ToString();
+  const RemeshRun run = RemeshOrDie(*input, -1, -1);
+  EXPECT_EQ(run.report.boundary_loops, 5u);
+  const testing::LevelTopology t = testing::CheckLevelTopology(ExtractLevel(run.mesh, run.mesh.hierarchy.levels()));
+  EXPECT_TRUE(t.manifold);
+  EXPECT_EQ(t.boundary_loops, 5u);
+  std::vector<Vec3> boundary;
+  for (size_t v = 0; v < run.mesh.kinds.size(); ++v) {
+    if (run.mesh.kinds[v] == VertexKind::kBoundary) boundary.push_back(run.mesh.positions[v]);
+  }
+  ASSERT_FALSE(boundary.empty());
+  EXPECT_LT(MaxDistanceToBoundaryEdges(boundary, *input), 1e-9 * BoundingBoxDiagonal(*input));
+  EXPECT_GE(run.report.normal_fraction, 0.9);
 }
 
 TEST(Remesh, BunnyNpmClosedGenusZero) { CheckSharedMesh("bunny_npm.obj", 2, 0.9); }
