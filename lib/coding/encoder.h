@@ -46,11 +46,14 @@ struct EncodeOptions {
   double target_bpv = 0;
   double target_psnr = 0;
   // Tangential components use lambda / tangential_factor. The seed paper uses 100;
-  // on normal meshes whose non-normal (parametric-midpoint) vertices carry large
-  // tangential details that zeroes them, and R-D measurements (bunny, horse, blob
-  // at 0.5 / 1 / 2 bpv, EQ coder) put 1 best overall (+5 to +14 dB over 100 at
-  // 0.5-1 bpv). Zerotree: tangential amplitude weight 1/sqrt(factor).
-  double tangential_factor = 1.0;
+  // on our normal meshes the non-normal (parametric-midpoint) vertices carry large
+  // tangential details that 100 zeroes (-5 to -14 dB at 0.5-1 bpv, session 3). With
+  // the per-level lambda of the EQ chunks (level_encoder.cpp), 4 beat 1 at every
+  // point measured (bunny, horse; EQ lifted and unlifted at 0.25 / 1 / 4 bpv: +0.4
+  // to +1.2 dB; zerotree at 1 bpv: +1.0 / +1.1 dB); 8 was within 0.3 dB of 4 and
+  // 0.5 / 2 worse (codec log in bench/README.md). Zerotree: tangential amplitude
+  // weight 1/sqrt(factor).
+  double tangential_factor = 4.0;
   // Vertices of the original irregular mesh (the bpv denominator).
   size_t input_vertices = 0;
   // The original irregular mesh, for target_psnr and measure_psnr.
