@@ -492,8 +492,14 @@ StatusOr<Pass> EncodeWithTarget(const Prepared& prep, const EncodeOptions& optio
 
 }  // namespace
 
-StatusOr<std::vector<uint8_t>> Encode(const SemiRegularMesh& mesh, const EncodeOptions& options,
+double DefaultTangentialFactor(bitstream::TransformId transform) {
+  return transform == bitstream::TransformId::kLifted ? 4.0 : 1.0;
+}
+
+StatusOr<std::vector<uint8_t>> Encode(const SemiRegularMesh& mesh, const EncodeOptions& requested,
                                       EncodeReport* report) {
+  EncodeOptions options = requested;
+  if (options.tangential_factor == 0) options.tangential_factor = DefaultTangentialFactor(options.transform);
   EQMESH_RETURN_IF_ERROR(Validate(mesh, options));
   EQMESH_ASSIGN_OR_RETURN(Prepared prep, Prepare(mesh, options.transform));
   std::deque<Renumbered> cache;

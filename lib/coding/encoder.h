@@ -45,15 +45,12 @@ struct EncodeOptions {
   // full-resolution mesh against *original (smallest stream that meets it).
   double target_bpv = 0;
   double target_psnr = 0;
-  // Tangential components use lambda / tangential_factor. The seed paper uses 100;
-  // on our normal meshes the non-normal (parametric-midpoint) vertices carry large
-  // tangential details that 100 zeroes (-5 to -14 dB at 0.5-1 bpv, session 3). With
-  // the per-level lambda of the EQ chunks (level_encoder.cpp), 4 beat 1 at every
-  // point measured (bunny, horse; EQ lifted and unlifted at 0.25 / 1 / 4 bpv: +0.4
-  // to +1.2 dB; zerotree at 1 bpv: +1.0 / +1.1 dB); 8 was within 0.3 dB of 4 and
-  // 0.5 / 2 worse (codec log in bench/README.md). Zerotree: tangential amplitude
-  // weight 1/sqrt(factor).
-  double tangential_factor = 4.0;
+  // Tangential components use lambda / tangential_factor; 0 = the default for the
+  // transform, DefaultTangentialFactor below. The seed paper uses 100; on our normal
+  // meshes the non-normal (parametric-midpoint) vertices carry large tangential
+  // details that 100 zeroes (-5 to -14 dB at 0.5-1 bpv, session 3). Zerotree:
+  // tangential amplitude weight 1/sqrt(factor).
+  double tangential_factor = 0;
   // Vertices of the original irregular mesh (the bpv denominator).
   size_t input_vertices = 0;
   // The original irregular mesh, for target_psnr and measure_psnr.
@@ -62,6 +59,14 @@ struct EncodeOptions {
   bool measure_psnr = false;
   ProgressFn progress;
 };
+
+// 4 for the lifted transform, 1 for the unlifted one. Measured with the per-level
+// lambda of the EQ chunks (level_encoder.cpp; codec log in bench/README.md): 4 beat 1
+// at every point on bunny and horse, both transforms (+0.4 to +1.2 dB, zerotree +1.0 /
+// +1.1 dB at 1 bpv), and on igea lifted; but igea unlifted fell from 91.7 to 85.2 dB at
+// 4 bpv with 4 (outliers of the decoded surface, B->A Hausdorff 3.5e-3 diagonal), so
+// the unlifted transform keeps 1.
+double DefaultTangentialFactor(bitstream::TransformId transform);
 
 struct EncodeReport {
   double lambda = 0;          // as coded (after the log2 code)
