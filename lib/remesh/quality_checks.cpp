@@ -55,4 +55,14 @@ StatusOr<FoldReport> CountFoldsAgainstInput(const Mesh& remesh, const Mesh& inpu
   return total;
 }
 
+double NormalFraction(const SemiRegularHierarchy& hierarchy, const std::vector<VertexKind>& kinds) {
+  size_t normal = 0, counted = 0;
+  for (size_t v = hierarchy.NumVertices(0); v < kinds.size(); ++v) {
+    if (kinds[v] == VertexKind::kBoundary) continue;
+    ++counted;
+    normal += kinds[v] == VertexKind::kNormal;
+  }
+  return counted ? static_cast<double>(normal) / static_cast<double>(counted) : 1.0;
+}
+
 }  // namespace eqmesh

@@ -4,9 +4,11 @@
 #pragma once
 
 #include <cstddef>
+#include <vector>
 
 #include "core/status.h"
 #include "mesh/mesh.h"
+#include "mesh/semi_regular.h"
 
 namespace eqmesh {
 
@@ -25,5 +27,9 @@ class TriangleBvh;
 // Degenerate triangles are not folded (CountFoldsAgainstInput counts them apart).
 bool FacesAwayFromInput(const TriangleBvh& bvh, const Mesh& input, const Vec3& a, const Vec3& b, const Vec3& c,
                         double* error = nullptr);
+
+// Share of the odd, non-boundary vertices of a remesh that are normal
+// (RemeshReport::normal_fraction); 1 when there are none.
+double NormalFraction(const SemiRegularHierarchy& hierarchy, const std::vector<VertexKind>& kinds);
 
 }  // namespace eqmesh

@@ -12,6 +12,7 @@
 #include "mesh/triangle_bvh.h"
 #include "remesh/base_domain.h"
 #include "remesh/input_check.h"
+#include "remesh/quality_checks.h"
 #include "remesh/piercing.h"
 #include "remesh/untangle.h"
 
@@ -168,7 +169,6 @@ struct Refinement {
 // the final kinds (the untangling may have changed some).
 void CountNormalVertices(const SemiRegularHierarchy& h, const std::vector<VertexKind>& kinds,
                          RemeshReport* report) {
-  size_t normal_all = 0, counted_all = 0;
   report->normal_fraction_per_level.clear();
   for (int level = 1; level <= h.levels(); ++level) {
     size_t normal = 0, counted = 0;
@@ -178,10 +178,8 @@ void CountNormalVertices(const SemiRegularHierarchy& h, const std::vector<Vertex
       normal += kinds[v] == VertexKind::kNormal;
     }
     report->normal_fraction_per_level.push_back(counted ? static_cast<double>(normal) / static_cast<double>(counted) : 1.0);
-    normal_all += normal;
-    counted_all += counted;
   }
-  report->normal_fraction = counted_all ? static_cast<double>(normal_all) / static_cast<double>(counted_all) : 1.0;
+  report->normal_fraction = NormalFraction(h, kinds);
 }
 
 struct RefineContext {

@@ -2,11 +2,11 @@
 #include "remesh/untangle.h"
 
 #include <algorithm>
-#include <array>
 #include <optional>
 
 #include <Eigen/Geometry>
 
+#include "mesh/mesh_topology.h"
 #include "remesh/quality_checks.h"
 #include "wavelet/butterfly.h"
 
@@ -27,21 +27,14 @@ constexpr size_t kMaxClusterVertices = 256;
 // (the remesh bar, bench/README_remesh.md) drop below this.
 constexpr double kMinNormalShare = 0.90;
 
-// Edges of `mesh` that only one face uses (its boundary curves).
-std::vector<std::array<uint32_t, 2>> InputBoundaryEdges(const Mesh& mesh) {
-  std::vector<std::array<uint32_t, 2>> edges;
-  for (const Face& f : mesh.faces) {
-    for (int c = 0; c < 3; ++c) edges.push_back({std::min(f[c], f[(c + 1) % 3]), std::max(f[c], f[(c + 1) % 3])});
+// Edges of `mesh` that only one face uses (its boundary curves), by (min, max).
+std::vector<Edge> InputBoundaryEdges(const Mesh& mesh) {
+  const MeshTopology topology(mesh);
+  std::vector<Edge> boundary;
+  for (uint32_t e = 0; e < topology.num_edges(); ++e) {
+    if (topology.IsBoundaryEdge(e)) boundary.push_back(topology.EdgeVertices(e));
   }
-  std::sort(edges.begin(), edges.end());
-  std::vector<std::array<uint32_t, 2>> once;
-  for (size_t i = 0; i < edges.size();) {
-    size_t j = i;
-    while (j < edges.size() && edges[j] == edges[i]) ++j;
-    if (j - i == 1) once.push_back(edges[i]);
-    i = j;
-  }
-  return once;
+  return boundary;
 }
 
 struct Untangler {
@@ -50,18 +43,17 @@ struct Untangler {
   std::vector<Vec3>& pos;
   std::vector<uint32_t> offsets, incident;  // vertex -> faces (CSR)
   const std::vector<VertexKind>& kinds;
-  std::vector<std::array<uint32_t, 2>> input_boundary;  // input edges with one face, by lower x
+  std::vector<Edge> input_boundary;  // input edges with one face, by LowerX
   double longest_boundary_edge = 0.0;
 
   Untangler(const std::vector<Face>& finest, const InputSurface& s, std::vector<Vec3>* p,
             const std::vector<VertexKind>& k)
       : faces(finest), surface(s), pos(*p), kinds(k), input_boundary(InputBoundaryEdges(*s.mesh)) {
     const std::vector<Vec3>& x = s.mesh->positions;
-    std::sort(input_boundary.begin(), input_boundary.end(), [&](const auto& e, const auto& f) {
-      const double ex = std::min(x[e[0]].x(), x[e[1]].x()), fx = std::min(x[f[0]].x(), x[f[1]].x());
-      return ex < fx || (ex == fx && e < f);
+    std::sort(input_boundary.begin(), input_boundary.end(), [&](const Edge& e, const Edge& f) {
+      return LowerX(e) < LowerX(f) || (LowerX(e) == LowerX(f) && e < f);
     });
-    for (const auto& e : input_boundary) longest_boundary_edge = std::max(longest_boundary_edge, (x[e[1]] - x[e[0]]).norm());
+    for (const Edge& e : input_boundary) longest_boundary_edge = std::max(longest_boundary_edge, (x[e[1]] - x[e[0]]).norm());
     offsets.assign(pos.size() + 1, 0);
     for (const Face& t : faces) {
       for (uint32_t v : t) ++offsets[v + 1];
@@ -90,18 +82,23 @@ struct Untangler {
     return s;
   }
 
+  // Smaller x of an input edge's endpoints: the key input_boundary is sorted by.
+  double LowerX(const Edge& e) const {
+    const std::vector<Vec3>& x = surface.mesh->positions;
+    return std::min(x[e[0]].x(), x[e[1]].x());
+  }
+
   // Closest point of the input's boundary curves to `target` within `reach`
   // (the edges are sorted by their lower x, so only a slab is scanned).
   std::optional<Vec3> ProjectBoundary(const Vec3& target, double reach) const {
     const std::vector<Vec3>& x = surface.mesh->positions;
     std::optional<Vec3> best;
     double best_d = reach * reach;
-    const auto lower_x = [&](const std::array<uint32_t, 2>& e) { return std::min(x[e[0]].x(), x[e[1]].x()); };
     auto it = std::upper_bound(input_boundary.begin(), input_boundary.end(), target.x() + reach,
-                               [&](double value, const std::array<uint32_t, 2>& e) { return value < lower_x(e); });
+                               [&](double value, const Edge& e) { return value < LowerX(e); });
     while (it != input_boundary.begin()) {
-      const std::array<uint32_t, 2>& e = *--it;
-      if (lower_x(e) < target.x() - reach - longest_boundary_edge) break;
+      const Edge& e = *--it;
+      if (LowerX(e) < target.x() - reach - longest_boundary_edge) break;
       const Vec3 a = x[e[0]], d = x[e[1]] - x[e[0]];
       const double len2 = d.squaredNorm();
       const double t = len2 > 0 ? std::clamp((target - a).dot(d) / len2, 0.0, 1.0) : 0.0;
@@ -398,20 +395,9 @@ size_t MarkMovedNonNormal(const SemiRegularHierarchy& h, const std::vector<uint8
   return count;
 }
 
-// Share of the odd, non-boundary vertices that are normal (RemeshReport's
-// normal_fraction).
-double NormalShare(const SemiRegularHierarchy& h, const std::vector<VertexKind>& kinds) {
-  size_t normal = 0, counted = 0;
-  for (size_t v = h.NumVertices(0); v < kinds.size(); ++v) {
-    if (kinds[v] == VertexKind::kBoundary) continue;
-    ++counted;
-    normal += kinds[v] == VertexKind::kNormal;
-  }
-  return counted ? static_cast<double>(normal) / static_cast<double>(counted) : 1.0;
-}
-
-// Single moves of the vertices from level `first` on, then cluster smoothing; returns the kinds the moves leave (moved vertices and all
-// they enter become non-normal) and how many normal vertices that concerned.
+// Single moves of the vertices from level `first` on, then cluster smoothing;
+// returns the kinds the moves leave (moved vertices and all they enter become
+// non-normal) and how many normal vertices that concerned.
 std::pair<std::vector<VertexKind>, size_t> UntangleFrom(const SemiRegularHierarchy& h, int first,
                                                         const std::vector<uint32_t>& folded,
                                                         const std::vector<VertexKind>& kinds, Untangler* u) {
@@ -441,10 +427,10 @@ size_t UntangleFinestLevel(const SemiRegularHierarchy& hierarchy, const InputSur
   const std::vector<Vec3> start = *positions;
   const int last_two = std::max(0, levels - 2);
   // A remesh already below the floor (dragon_vrip's) gets the last two levels only.
-  const int deepest = NormalShare(hierarchy, *kinds) >= kMinNormalShare ? 0 : last_two;
+  const int deepest = NormalFraction(hierarchy, *kinds) >= kMinNormalShare ? 0 : last_two;
   for (int first = deepest;; ++first) {
-    auto [trial, marked] = UntangleFrom(hierarchy, std::min(first, last_two), folded, *kinds, &u);
-    if (first >= last_two || NormalShare(hierarchy, trial) >= kMinNormalShare) {
+    auto [trial, marked] = UntangleFrom(hierarchy, first, folded, *kinds, &u);
+    if (first >= last_two || NormalFraction(hierarchy, trial) >= kMinNormalShare) {
       *kinds = std::move(trial);
       return marked;
     }
