@@ -77,7 +77,7 @@ nlohmann::json ToJson(const EncodeArgs& a, const RemeshReport& remesh, const Enc
   j["levels"] = r.level_bytes.size();
   j["level_search"] = nlohmann::json::array();
   for (const LevelCountTrial& t : search.trials) {
-    j["level_search"].push_back({{"levels", t.levels}, {"bpv", t.bpv}, {"psnr_db", t.psnr_db}});
+    j["level_search"].push_back({{"levels", t.levels}, {"bpv", t.bpv}, {"psnr_db", t.psnr_db}, {"coded", t.coded}});
   }
   j["transform"] = a.transform;
   j["coder"] = a.coder;

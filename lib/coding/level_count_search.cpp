@@ -31,6 +31,24 @@ StatusOr<double> MeasureDecoded(const std::vector<uint8_t>& bytes, const Mesh& o
 #endif
 }
 
+// PSNR of the uncoded mesh truncated to `levels`: no stream of that many levels
+// can do better, so a PSNR target above it need not be searched at all.
+StatusOr<double> CeilingPsnr(const SemiRegularMesh& mesh, int levels, const Mesh& original) {
+#ifdef EQMESH_HAVE_METRICS
+  CompareOptions compare;
+  compare.samples = kRankingSamples;
+  EQMESH_ASSIGN_OR_RETURN(SurfaceDistance d, CompareSurfaces(original, ExtractLevel(mesh, levels), compare));
+  return d.psnr_db;
+#else
+  (void)mesh, (void)levels, (void)original;
+  return UnsupportedFeature("choosing the level count needs eqmesh_metrics, not in this build");
+#endif
+}
+
+// Coding only adds error to the truncated geometry; this margin covers the
+// meter's sampling spread (about 0.01 dB at kRankingSamples).
+constexpr double kCeilingMarginDb = 0.05;
+
 struct Candidate {
   std::vector<uint8_t> bytes;
   EncodeReport report;
@@ -66,6 +84,16 @@ StatusOr<Candidate> ScanLevels(const SemiRegularMesh& mesh, const EncodeOptions&
   for (int k = top > 0 ? 1 : 0; k <= top; ++k) {
     ReportProgress(options.progress, "levels " + std::to_string(k) + "/" + std::to_string(top),
                    static_cast<double>(k) / static_cast<double>(top + 1));
+    if (options.target_psnr > 0 && k < top) {
+      // A level count whose uncoded geometry misses the target cannot meet it:
+      // one measurement instead of a whole lambda search (most of a PSNR-target
+      // encode's time went to such hopeless searches at the coarse counts).
+      EQMESH_ASSIGN_OR_RETURN(const double ceiling, CeilingPsnr(mesh, k, *options.original));
+      if (ceiling + kCeilingMarginDb < options.target_psnr) {
+        out->trials.push_back({k, 0.0, ceiling, 0, false, false});
+        continue;
+      }
+    }
     EQMESH_ASSIGN_OR_RETURN(Candidate c, EncodeTruncated(mesh, k, options));
     const bool feasible = options.target_psnr <= 0 || c.report.psnr_db >= options.target_psnr;
     out->trials.push_back({k, c.report.bpv, c.report.psnr_db, c.bytes.size(), feasible});

@@ -12,8 +12,9 @@
 // So for a bpv target the encoder codes the mesh truncated to K = 1, 2, ... levels,
 // each at the target rate, measures each decoded stream against the original
 // (the same Metro meter as `eqmesh compare`), and keeps the best; for a PSNR
-// target it keeps the smallest stream that meets it. Both scans stop once a
-// further level makes things worse. Departure from the seed: the level count is
+// target it keeps the smallest stream that meets it, skipping level counts whose
+// uncoded truncated mesh already misses it. Both scans stop once a further level
+// makes things worse. Departure from the seed: the level count is
 // an encoder decision by measurement, not a property of the input.
 #pragma once
 
@@ -32,6 +33,9 @@ struct LevelCountTrial {
   double psnr_db = 0;
   size_t bytes = 0;
   bool feasible = true;  // PSNR target: met; bpv target: always true
+  // False where a PSNR target was above this count's uncoded (truncated) PSNR,
+  // which psnr_db then holds: not encoded, bpv and bytes 0.
+  bool coded = true;
 };
 
 struct LevelCountReport {

@@ -2,11 +2,13 @@
 #include "remesh/untangle.h"
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
 
 #include <Eigen/Geometry>
 
 #include "mesh/mesh_topology.h"
+#include "remesh/fan_kernel.h"
 #include "remesh/quality_checks.h"
 #include "wavelet/butterfly.h"
 
@@ -17,12 +19,21 @@ constexpr int kPasses = 4;
 // Blends between a vertex's position and its neighbours' centroid that are tried.
 constexpr double kBlends[] = {1.0, 0.75, 0.5, 0.25};
 constexpr double kMaxErrorGrowth = 2.0;
-// Cluster smoothing: rings of neighbours around the folds, Jacobi sweeps.
-constexpr int kClusterRings = 2;
+// Error every move may reach whatever the start: faces whose centroids sit this
+// share of their longest edge off the input. Without it a fold lying flat in one
+// input triangle (error 0, common at the finest level, whose faces are smaller
+// than the input's) could only be moved to error 0, i.e. never.
+constexpr double kErrorFloorShare = 0.05;
+// Cluster smoothing: rings of neighbours around the folds, widened round after
+// round (one wide ring count for all merged neighbouring folds, and a merged
+// cluster is kept or undone as a whole: measured worse than widening).
+constexpr int kClusterRings[] = {2, 3, 4, 6};
 constexpr int kClusterIterations = 8;
+constexpr int kKernelIterations = 48;
+constexpr int kStallSweeps = 24;
 // Larger clusters are whole folded regions (dragon_vrip's crevices), where a
 // Jacobi smoothing is slow and was never kept.
-constexpr size_t kMaxClusterVertices = 256;
+constexpr size_t kMaxClusterVertices = 512;
 // Moves of coarser vertices stop short of making the remesh's normal share
 // (the remesh bar, bench/README_remesh.md) drop below this.
 constexpr double kMinNormalShare = 0.90;
@@ -73,6 +84,22 @@ struct Untangler {
     const Vec3& c = pos[t[2]];
     if (!((b - a).cross(c - a).squaredNorm() > 0.0)) return true;
     return FacesAwayFromInput(*surface.bvh, *surface.mesh, a, b, c, error);
+  }
+
+  // Error allowance of face f for kErrorFloorShare (same units as Folded's).
+  double ErrorFloor(uint32_t f) const {
+    const Face& t = faces[f];
+    const Vec3& a = pos[t[0]];
+    const Vec3& b = pos[t[1]];
+    const Vec3& c = pos[t[2]];
+    const double reach = kErrorFloorShare * std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+    return (b - a).cross(c - a).norm() * reach * reach;
+  }
+
+  double FanErrorFloor(uint32_t v) const {
+    double floor = 0.0;
+    for (uint32_t n = offsets[v]; n < offsets[v + 1]; ++n) floor += ErrorFloor(incident[n]);
+    return floor;
   }
 
   // Folded faces around v, then their error (smaller is better).
@@ -174,11 +201,11 @@ struct Untangler {
     return (x[g[1]] - x[g[0]]).cross(x[g[2]] - x[g[0]]);
   }
 
-  // Where v would go for blend t towards its neighbours' centroid: the closest
+  // Where v would go for blend t towards `aim`: the closest
   // same-facing input point, or the blend itself off the surface.
-  std::optional<Vec3> Candidate(uint32_t v, const Vec3& centroid, const Vec3& facing, double t,
+  std::optional<Vec3> Candidate(uint32_t v, const Vec3& aim, const Vec3& facing, double t,
                                 bool off_surface) const {
-    const Vec3 target = (1.0 - t) * pos[v] + t * centroid;
+    const Vec3 target = (1.0 - t) * pos[v] + t * aim;
     if (kinds[v] == VertexKind::kBoundary) {
       if (off_surface) return std::nullopt;
       return ProjectBoundary(target, FanRadius(v));
@@ -187,6 +214,17 @@ struct Untangler {
     const ClosestPointResult cp = ProjectFacing(target, facing, FanRadius(v));
     if (!cp.found()) return std::nullopt;
     return cp.point;
+  }
+
+  // The point of v's flattened fan farthest from inverting any of its faces.
+  std::optional<Vec3> KernelCentre(uint32_t v, const Vec3& facing) const {
+    std::vector<std::pair<Vec3, Vec3>> opposite;
+    for (uint32_t n = offsets[v]; n < offsets[v + 1]; ++n) {
+      const Face& t = faces[incident[n]];
+      const int c = t[0] == v ? 0 : t[1] == v ? 1 : 2;
+      opposite.emplace_back(pos[t[(c + 1) % 3]], pos[t[(c + 2) % 3]]);
+    }
+    return FanKernelCenter(pos[v], facing, opposite);
   }
 
   // Moves v to the best candidate if that folds fewer faces; true if moved.
@@ -199,22 +237,31 @@ struct Untangler {
     const Vec3 start = pos[v];
     const Vec3 centroid = NeighbourCentroid(v);
     const Vec3 facing = InputNormal(v);
+    const double allowed = std::max(kMaxErrorGrowth * before.second, FanErrorFloor(v));
+    // Interior vertices also aim at their fan's kernel centre, which undoes
+    // folds the centroid cannot (a face turned over inside one input triangle).
+    std::vector<Vec3> aims{centroid};
+    if (kinds[v] != VertexKind::kBoundary) {
+      if (const std::optional<Vec3> kernel = KernelCentre(v, facing)) aims.push_back(*kernel);
+    }
     Vec3 best = start;
     std::pair<size_t, double> best_score = before;
     for (const bool off_surface : {false, true}) {
-      for (double t : kBlends) {
-        const std::optional<Vec3> candidate = Candidate(v, centroid, facing, t, off_surface);
-        if (!candidate) continue;
-        pos[v] = *candidate;
-        const std::pair<size_t, double> score = Score(v);
-        pos[v] = start;
-        // Fewer folds, but not at any price: the faces' error may grow at most
-        // kMaxErrorGrowth-fold (a fold across a thin part is better than a
-        // vertex dragged onto the wrong side of it).
-        if (score.second > kMaxErrorGrowth * before.second) continue;
-        if (score < best_score) {
-          best_score = score;
-          best = *candidate;
+      for (const Vec3& aim : aims) {
+        for (double t : kBlends) {
+          const std::optional<Vec3> candidate = Candidate(v, aim, facing, t, off_surface);
+          if (!candidate) continue;
+          pos[v] = *candidate;
+          const std::pair<size_t, double> score = Score(v);
+          pos[v] = start;
+          // Fewer folds, but not at any price: the faces' error may grow at
+          // most kMaxErrorGrowth-fold, or to the floor (a fold across a thin
+          // part is better than a vertex dragged onto the wrong side of it).
+          if (score.second > allowed) continue;
+          if (score < best_score) {
+            best_score = score;
+            best = *candidate;
+          }
         }
       }
       if (best != start) break;
@@ -223,10 +270,10 @@ struct Untangler {
     return best != start;
   }
 
-  // Movable vertices within kClusterRings rings of the faces around `folded`
+  // Movable vertices within `rings` rings of the faces around `folded`
   // that still fold, grouped into connected clusters.
   std::vector<std::vector<uint32_t>> FoldClusters(const std::vector<uint32_t>& folded,
-                                                  const std::vector<uint8_t>& movable) const {
+                                                  const std::vector<uint8_t>& movable, int rings) const {
     std::vector<uint8_t> in(pos.size(), 0);
     std::vector<uint32_t> seeds;
     for (uint32_t f0 : folded) {
@@ -244,7 +291,7 @@ struct Untangler {
       }
     }
     std::vector<uint32_t> frontier = seeds, region = seeds;
-    for (int ring = 0; ring < kClusterRings; ++ring) {
+    for (int ring = 0; ring < rings; ++ring) {
       std::vector<uint32_t> next;
       for (uint32_t v : frontier) {
         for (uint32_t n = offsets[v]; n < offsets[v + 1]; ++n) {
@@ -283,40 +330,68 @@ struct Untangler {
     return clusters;
   }
 
-  // Folds and error of the faces around a cluster.
-  std::pair<size_t, double> ClusterScore(const std::vector<uint32_t>& cluster) const {
+  std::vector<uint32_t> FacesAround(const std::vector<uint32_t>& cluster) const {
     std::vector<uint32_t> around;
     for (uint32_t v : cluster) {
       for (uint32_t n = offsets[v]; n < offsets[v + 1]; ++n) around.push_back(incident[n]);
     }
     std::sort(around.begin(), around.end());
     around.erase(std::unique(around.begin(), around.end()), around.end());
+    return around;
+  }
+
+  // Folds and error of `around` (the faces around a cluster).
+  std::pair<size_t, double> FacesScore(const std::vector<uint32_t>& around) const {
     std::pair<size_t, double> s{0, 0.0};
     for (uint32_t f : around) s.first += Folded(f, &s.second);
     return s;
   }
 
   // Where single moves are stuck (a pleat needs several vertices to move
-  // together), Jacobi-smooths the whole cluster on the surface; kept only if it
-  // folds fewer faces without more than kMaxErrorGrowth times the error.
-  bool SmoothCluster(const std::vector<uint32_t>& cluster) {
+  // together), Jacobi-smooths the whole cluster on the surface, or with
+  // `to_kernel` sweeps it towards its fans' kernel centres; keeps the best
+  // iterate if it folds fewer faces without more than kMaxErrorGrowth times
+  // the error (or the floor).
+  bool SmoothCluster(const std::vector<uint32_t>& cluster, bool to_kernel) {
     if (cluster.size() > kMaxClusterVertices) return false;
-    const std::pair<size_t, double> before = ClusterScore(cluster);
+    const std::vector<uint32_t> around = FacesAround(cluster);
+    const std::pair<size_t, double> before = FacesScore(around);
     if (before.first == 0) return false;
+    double floor = 0.0;
+    for (uint32_t f : around) floor += ErrorFloor(f);
+    const double allowed = std::max(kMaxErrorGrowth * before.second, floor);
     std::vector<Vec3> saved, next(cluster.size());
     for (uint32_t v : cluster) saved.push_back(pos[v]);
-    for (int it = 0; it < kClusterIterations; ++it) {
+    // The fold count does not fall monotonically along the sweeps: the best
+    // iterate is kept, not the last; sweeps end when all folds are gone or
+    // kStallSweeps found nothing better.
+    std::vector<Vec3> best = saved;
+    std::pair<size_t, double> best_score = before;
+    const int sweeps = to_kernel ? kKernelIterations : kClusterIterations;
+    for (int it = 0, stalled = 0; it < sweeps && best_score.first > 0 && stalled < kStallSweeps; ++it) {
       for (size_t i = 0; i < cluster.size(); ++i) {
         const uint32_t v = cluster[i];
-        const std::optional<Vec3> moved = Candidate(v, NeighbourCentroid(v), InputNormal(v), 1.0, false);
+        // The input's orientation where v is now (a sweep may carry it over a crease).
+        const Vec3 facing = InputNormal(v);
+        std::optional<Vec3> aim;
+        if (to_kernel && kinds[v] != VertexKind::kBoundary) aim = KernelCentre(v, facing);
+        const std::optional<Vec3> moved = Candidate(v, aim ? *aim : NeighbourCentroid(v), facing, 1.0, false);
         next[i] = moved ? *moved : pos[v];
+        // Kernel sweeps run in place (Gauss-Seidel): each centre needs the
+        // neighbours' latest positions to untangle a multi-vertex fold.
+        if (to_kernel) pos[v] = next[i];
       }
       for (size_t i = 0; i < cluster.size(); ++i) pos[cluster[i]] = next[i];
+      const std::pair<size_t, double> score = FacesScore(around);
+      ++stalled;
+      if (score.second <= allowed && score < best_score) {
+        if (score.first < best_score.first) stalled = 0;
+        best_score = score;
+        best = next;
+      }
     }
-    const std::pair<size_t, double> after = ClusterScore(cluster);
-    if (after.first < before.first && after.second <= kMaxErrorGrowth * before.second) return true;
-    for (size_t i = 0; i < cluster.size(); ++i) pos[cluster[i]] = saved[i];
-    return false;
+    for (size_t i = 0; i < cluster.size(); ++i) pos[cluster[i]] = best[i];
+    return best_score.first < before.first;
   }
 };
 
@@ -332,8 +407,28 @@ std::vector<uint8_t> MovableFrom(uint32_t first, const std::vector<VertexKind>& 
 
 // Single-vertex moves, pass after pass, starting from the corners of the faces in
 // `folded` that still fold; marks what moved.
-void MoveSingleVertices(Untangler* u, const std::vector<uint32_t>& folded,
-                        const std::vector<uint8_t>& movable, std::vector<uint8_t>* moved) {
+// Normal vertices a move may still turn non-normal; unlimited when absent.
+class NormalBudget {
+ public:
+  explicit NormalBudget(std::optional<size_t> left) : left_(left) {}
+  // Normal vertices of `vertices` not moved yet: what moving them costs.
+  size_t Cost(const std::vector<uint32_t>& vertices, const std::vector<VertexKind>& kinds,
+              const std::vector<uint8_t>& moved) const {
+    size_t cost = 0;
+    for (uint32_t v : vertices) cost += kinds[v] == VertexKind::kNormal && !moved[v];
+    return cost;
+  }
+  bool Affords(size_t cost) const { return !left_ || cost <= *left_; }
+  void Spend(size_t cost) {
+    if (left_) *left_ -= cost;
+  }
+
+ private:
+  std::optional<size_t> left_;
+};
+
+void MoveSingleVertices(Untangler* u, const std::vector<uint32_t>& folded, const std::vector<uint8_t>& movable,
+                        NormalBudget* budget, std::vector<uint8_t>* moved) {
   std::vector<uint8_t> suspect(u->pos.size(), 0);
   for (uint32_t f : folded) {
     if (!u->Folded(f, nullptr)) continue;
@@ -344,7 +439,9 @@ void MoveSingleVertices(Untangler* u, const std::vector<uint32_t>& folded,
     for (uint32_t v = 0; v < u->pos.size(); ++v) {
       if (!suspect[v] || !movable[v]) continue;
       suspect[v] = 0;
-      if (!u->Improve(v)) continue;
+      const size_t cost = budget->Cost({v}, u->kinds, *moved);
+      if (!budget->Affords(cost) || !u->Improve(v)) continue;
+      budget->Spend(cost);
       changed = true;
       (*moved)[v] = 1;
       // Its neighbours' faces changed: they may now improve too.
@@ -400,17 +497,39 @@ size_t MarkMovedNonNormal(const SemiRegularHierarchy& h, const std::vector<uint8
 // non-normal) and how many normal vertices that concerned.
 std::pair<std::vector<VertexKind>, size_t> UntangleFrom(const SemiRegularHierarchy& h, int first,
                                                         const std::vector<uint32_t>& folded,
-                                                        const std::vector<VertexKind>& kinds, Untangler* u) {
+                                                        const std::vector<VertexKind>& kinds,
+                                                        std::optional<size_t> budget_left, Untangler* u) {
   std::vector<uint8_t> moved(u->pos.size(), 0);
   const std::vector<uint8_t> movable = MovableFrom(h.NumVertices(first), kinds);
-  MoveSingleVertices(u, folded, movable, &moved);
-  for (const std::vector<uint32_t>& cluster : u->FoldClusters(folded, movable)) {
-    if (!u->SmoothCluster(cluster)) continue;
-    for (uint32_t v : cluster) moved[v] = 1;
+  NormalBudget budget(budget_left);
+  // A smoothed cluster can leave folds single moves then undo.
+  for (const int rings : kClusterRings) {
+    MoveSingleVertices(u, folded, movable, &budget, &moved);
+    for (const std::vector<uint32_t>& cluster : u->FoldClusters(folded, movable, rings)) {
+      const size_t cost = budget.Cost(cluster, kinds, moved);
+      if (!budget.Affords(cost)) continue;
+      if (!u->SmoothCluster(cluster, false) && !u->SmoothCluster(cluster, true)) continue;
+      budget.Spend(cost);
+      for (uint32_t v : cluster) moved[v] = 1;
+    }
   }
+  MoveSingleVertices(u, folded, movable, &budget, &moved);
   std::vector<VertexKind> out = kinds;
   const size_t marked = MarkMovedNonNormal(h, moved, &out);
   return {std::move(out), marked};
+}
+
+// How many normal vertices may turn non-normal before the share drops below
+// kMinNormalShare (NormalFraction's count).
+size_t NormalsAboveFloor(const SemiRegularHierarchy& h, const std::vector<VertexKind>& kinds) {
+  size_t normal = 0, counted = 0;
+  for (size_t v = h.NumVertices(0); v < kinds.size(); ++v) {
+    if (kinds[v] == VertexKind::kBoundary) continue;
+    ++counted;
+    normal += kinds[v] == VertexKind::kNormal;
+  }
+  const auto floor = static_cast<size_t>(std::ceil(kMinNormalShare * static_cast<double>(counted)));
+  return normal > floor ? normal - floor : 0;
 }
 
 }  // namespace
@@ -422,20 +541,28 @@ size_t UntangleFinestLevel(const SemiRegularHierarchy& hierarchy, const InputSur
   if (levels < 1 || folded.empty()) return 0;
   Untangler u(hierarchy.Faces(levels), surface, positions, *kinds);
   // Every level may move, as deep as the normal share allows (a coarse vertex's
-  // move makes every later vertex predicted from it non-normal); the last two
-  // levels always may.
+  // move makes every later vertex predicted from it non-normal). The finest
+  // level alone comes last, with a budget: its moves enter no stencil, so each
+  // costs one normal vertex, and they stop where the share would reach the floor.
   const std::vector<Vec3> start = *positions;
   const int last_two = std::max(0, levels - 2);
-  // A remesh already below the floor (dragon_vrip's) gets the last two levels only.
-  const int deepest = NormalFraction(hierarchy, *kinds) >= kMinNormalShare ? 0 : last_two;
-  for (int first = deepest;; ++first) {
-    auto [trial, marked] = UntangleFrom(hierarchy, first, folded, *kinds, &u);
-    if (first >= last_two || NormalFraction(hierarchy, trial) >= kMinNormalShare) {
+  if (NormalFraction(hierarchy, *kinds) < kMinNormalShare) {
+    // A remesh already below the floor (dragon_vrip's): the last two levels, freely.
+    auto [trial, marked] = UntangleFrom(hierarchy, last_two, folded, *kinds, std::nullopt, &u);
+    *kinds = std::move(trial);
+    return marked;
+  }
+  for (int first = 0; first < levels - 1; ++first) {
+    auto [trial, marked] = UntangleFrom(hierarchy, first, folded, *kinds, std::nullopt, &u);
+    if (NormalFraction(hierarchy, trial) >= kMinNormalShare) {
       *kinds = std::move(trial);
       return marked;
     }
     *positions = start;
   }
+  auto [trial, marked] = UntangleFrom(hierarchy, levels - 1, folded, *kinds, NormalsAboveFloor(hierarchy, *kinds), &u);
+  *kinds = std::move(trial);
+  return marked;
 }
 
 }  // namespace eqmesh

@@ -2,18 +2,23 @@
 //
 // Departure from Guskov et al. 2000 (whose remesh has no such pass): a face of
 // the finest level that faces away from the input (quality_checks.h) gets its
-// corners moved, one at a time, to the input point closest to (or part-way to)
-// their neighbours' centroid on same-facing input triangles, or to the blend
-// itself where no surface point helps, when that folds fewer of the faces around
-// them; clusters where no single move helps are smoothed together. Boundary
-// vertices slide along the input's boundary curves (to the closest boundary point
-// of their boundary neighbours' midpoint); base vertices never move. Corners of
-// every level may move (most folds have a corner from a coarser level than the
-// last two), as deep as keeps the normal share >= 0.90: each depth is tried from
-// the remesh as it came, all levels first, the last two levels always allowed.
-// No parameter is needed any more, so the moves are free in 3D; moved vertices,
-// and every later vertex whose butterfly prediction or frame they enter, become
-// non-normal.
+// corners moved, one at a time, towards their neighbours' centroid or towards
+// the centre of their fan's kernel (fan_kernel.h, after Freitag & Plassmann's
+// untangling), in steps, each projected onto same-facing input triangles, or
+// the blend itself where no surface point helps, when that folds fewer of the
+// faces around them. Clusters where no single move helps (whole folded patches:
+// a coarse face turned over with all its descendants) are smoothed together,
+// by centroids (Jacobi) or by kernel centres (Gauss-Seidel), in rings widened
+// from 2 to 6 around the folds, keeping the best sweep. A move's error may grow
+// 2x, or to a floor (centroids 5 % of an edge off the input), since a fold lying
+// flat in one input triangle has error 0. Boundary vertices slide along the
+// input's boundary curves; base vertices never move. Corners of every level may
+// move, as deep as keeps the normal share >= 0.90: each depth is tried from the
+// remesh as it came, all levels first; the finest level alone comes last, its
+// moves stopped where the share would reach 0.90. A remesh already below 0.90
+// (dragon_vrip's) gets its last two levels untangled freely. Moves are free in
+// 3D; moved vertices, and every later vertex whose butterfly prediction or frame
+// they enter, become non-normal.
 #pragma once
 
 #include <cstddef>
