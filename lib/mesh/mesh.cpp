@@ -1,6 +1,7 @@
 #include "mesh/mesh.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include <Eigen/Geometry>
 
@@ -26,6 +27,15 @@ BoundingBox ComputeBoundingBox(const Mesh& mesh) {
 }
 
 double BoundingBoxDiagonal(const Mesh& mesh) { return ComputeBoundingBox(mesh).Diagonal(); }
+
+double PowerOfTwoUnitScale(const Mesh& mesh) {
+  const BoundingBox box = ComputeBoundingBox(mesh);
+  const double side = (0.5 * box.max - 0.5 * box.min).maxCoeff();  // halves: no overflow
+  const double largest = std::max(box.max.cwiseAbs().maxCoeff(), box.min.cwiseAbs().maxCoeff());
+  if (!(side > 0.0) || !std::isfinite(side) || !std::isfinite(largest)) return 1.0;
+  const int exponent = std::min(-std::ilogb(side), 400 - std::ilogb(largest));
+  return std::ldexp(1.0, std::clamp(exponent, -1000, 1000));
+}
 
 size_t CountReferencedVertices(const Mesh& mesh) {
   std::vector<uint8_t> used(mesh.positions.size(), 0);

@@ -36,6 +36,13 @@ BoundingBox ComputeBoundingBox(const Mesh& mesh);
 // Diagonal of ComputeBoundingBox: the PSNR peak of the seed paper.
 double BoundingBoxDiagonal(const Mesh& mesh);
 
+// Power of two that brings the referenced vertices' largest bounding-box side
+// near 1, limited so that no coordinate leaves [-2^400, 2^400]; 1 for an empty
+// or non-finite box. Scaling by it is exact, so stages that square lengths
+// (areas, squared distances: they overflow near 1e155 and underflow near
+// 1e-155) work on any finite input at its own precision.
+double PowerOfTwoUnitScale(const Mesh& mesh);
+
 // Number of distinct vertices referenced by faces: the "input vertices" that
 // bits-per-vertex is measured against.
 size_t CountReferencedVertices(const Mesh& mesh);

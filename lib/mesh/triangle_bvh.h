@@ -77,7 +77,7 @@ class TriangleBvh {
 
   // Internal layout, public only so the build helpers can name it.
   struct Node {
-    Vec3 lo, hi;       // bounding box
+    Vec3 lo = Vec3::Zero(), hi = Vec3::Zero();  // bounding box
     uint32_t first;    // leaf: first triangle slot; interior: index of left child (right = first + 1)
     uint32_t count;    // leaf: number of triangles (> 0); interior: 0
   };

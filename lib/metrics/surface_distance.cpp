@@ -126,8 +126,13 @@ uint64_t DefaultSampleCount(const Mesh& a, const Mesh& b) {
 }
 
 Status ValidateForCompare(const Mesh& mesh) {
-  // AreaSampler::Build makes every check the meter needs (and TriangleBvh's).
-  return AreaSampler::Build(mesh).status();
+  // AreaSampler::Build makes every check the meter needs (and TriangleBvh's),
+  // at the scale CompareSurfaces measures at.
+  const double scale = PowerOfTwoUnitScale(mesh);
+  if (scale <= 0x1p32 && scale >= 0x1p-32) return AreaSampler::Build(mesh).status();
+  Mesh scaled = mesh;
+  for (Vec3& p : scaled.positions) p *= scale;
+  return AreaSampler::Build(scaled).status();
 }
 
 double PsnrDb(double bbox_diagonal, double rms) {
@@ -135,9 +140,39 @@ double PsnrDb(double bbox_diagonal, double rms) {
   return 20.0 * std::log10(bbox_diagonal / rms);
 }
 
+namespace {
+
+// Inputs of ordinary size are measured as they are (bit for bit as before);
+// beyond these scales areas and squared distances would over- or underflow.
+constexpr double kLargestUnscaled = 0x1p32, kSmallestUnscaled = 0x1p-32;
+
+Mesh Scaled(const Mesh& mesh, double scale) {
+  Mesh out = mesh;
+  for (Vec3& p : out.positions) p *= scale;
+  return out;
+}
+
+StatusOr<SurfaceDistance> CompareAtOwnScale(const Mesh& a, const Mesh& b, const CompareOptions& options);
+
+}  // namespace
+
 StatusOr<SurfaceDistance> CompareSurfaces(const Mesh& a, const Mesh& b,
                                           const CompareOptions& options) {
   EQMESH_RETURN_IF_ERROR(CheckOptions(options));
+  const double scale = PowerOfTwoUnitScale(a);
+  if (scale <= kLargestUnscaled && scale >= kSmallestUnscaled) return CompareAtOwnScale(a, b, options);
+  // Both by the same power of two (exact), the lengths back by its inverse.
+  EQMESH_ASSIGN_OR_RETURN(SurfaceDistance r, CompareAtOwnScale(Scaled(a, scale), Scaled(b, scale), options));
+  for (double* length : {&r.bbox_diagonal, &r.rms_ab, &r.rms_ba, &r.rms, &r.mean_ab, &r.mean_ba, &r.mean,
+                         &r.hausdorff_ab, &r.hausdorff_ba, &r.hausdorff}) {
+    *length /= scale;
+  }
+  return r;
+}
+
+namespace {
+
+StatusOr<SurfaceDistance> CompareAtOwnScale(const Mesh& a, const Mesh& b, const CompareOptions& options) {
   auto sampler_a = AreaSampler::Build(a);
   if (!sampler_a.ok()) return sampler_a.status().WithContext("original mesh");
   auto sampler_b = AreaSampler::Build(b);
@@ -167,5 +202,7 @@ StatusOr<SurfaceDistance> CompareSurfaces(const Mesh& a, const Mesh& b,
   r.psnr_db = PsnrDb(r.bbox_diagonal, r.rms);
   return r;
 }
+
+}  // namespace
 
 }  // namespace eqmesh

@@ -6,6 +6,7 @@
 #include <string>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 #include "mesh/mesh_topology.h"
 #include "mesh/repair.h"
@@ -244,6 +245,13 @@ StatusOr<SemiRegularMesh> Remesh(const Mesh& input, const RemeshOptions& options
     report.output_vertices = prep.kept.positions.size();
     return out;
   }
+  // Work at unit scale: squared lengths and areas of a 1e300-sized input would
+  // overflow (and the untangler's bounded searches then became scans of the
+  // whole input: a hang). A power of two keeps every result exact: base
+  // vertices come back as the input's own, and inputs of ordinary size remesh
+  // bit for bit as at their own scale.
+  const double scale = PowerOfTwoUnitScale(prep.surface);
+  for (Vec3& p : prep.surface.positions) p *= scale;
   EQMESH_ASSIGN_OR_RETURN(TriangleBvh bvh, TriangleBvh::Build(prep.surface));
   BaseDomainOptions base_options;
   base_options.target_vertices = AutoBaseTarget(prep, options);
@@ -263,6 +271,7 @@ StatusOr<SemiRegularMesh> Remesh(const Mesh& input, const RemeshOptions& options
   CountNormalVertices(best.hierarchy, best.kinds, &report);
   out.hierarchy = std::move(best.hierarchy);
   out.positions = std::move(best.positions);
+  for (Vec3& p : out.positions) p /= scale;
   out.kinds = std::move(best.kinds);
   report.levels = best.levels;
   report.estimated_psnr_db_per_level = best.estimated_psnr_db_per_level;

@@ -186,3 +186,37 @@ TEST(CompareSurfaces, RejectsBadInputWithClearErrors) {
 
 }  // namespace
 }  // namespace eqmesh
+
+namespace eqmesh {
+namespace {
+
+Mesh ScaledBy(Mesh mesh, double scale) {
+  for (Vec3& p : mesh.positions) p *= scale;
+  return mesh;
+}
+
+// Squared lengths of a 1e300 or 1e-300 mesh over- or underflow; the meter works
+// at unit scale (a power of two, exact) and reports lengths in the input's units.
+TEST(CompareSurfaces, ExtremeScalesMeasureAsAtUnitScale) {
+  const Mesh a = testing::MakeIcosphere(3);
+  const Mesh b = testing::MakeIcosphere(3, 1.01);
+  CompareOptions options;
+  options.samples = 20'000;
+  auto unit = CompareSurfaces(a, b, options);
+  ASSERT_TRUE(unit.ok()) << unit.status().ToString();
+  for (const double scale : {0x1p900, 0x1p-900}) {
+    auto scaled = CompareSurfaces(ScaledBy(a, scale), ScaledBy(b, scale), options);
+    ASSERT_TRUE(scaled.ok()) << scale << ": " << scaled.status().ToString();
+    EXPECT_EQ(scaled->psnr_db, unit->psnr_db) << scale;
+    EXPECT_EQ(scaled->rms, unit->rms * scale) << scale;
+    EXPECT_EQ(scaled->hausdorff, unit->hausdorff * scale) << scale;
+    EXPECT_TRUE(ValidateForCompare(ScaledBy(a, scale)).ok()) << scale;
+  }
+  // Not a power of two: the same to rounding.
+  auto huge = CompareSurfaces(ScaledBy(a, 1e300), ScaledBy(b, 1e300), options);
+  ASSERT_TRUE(huge.ok()) << huge.status().ToString();
+  EXPECT_NEAR(huge->psnr_db, unit->psnr_db, 1e-6);
+}
+
+}  // namespace
+}  // namespace eqmesh

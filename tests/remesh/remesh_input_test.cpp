@@ -76,3 +76,41 @@ TEST(RemeshInput, PinchedCowNeedsRepair) {
 
 }  // namespace
 }  // namespace eqmesh
+
+namespace eqmesh {
+namespace {
+
+Mesh ScaledBy(Mesh mesh, double scale) {
+  for (Vec3& p : mesh.positions) p *= scale;
+  return mesh;
+}
+
+// The remesher works at unit scale by a power of two: the same remesh, scaled,
+// at any scale. (At 1e300 squared lengths overflowed and the untangler's
+// bounded searches became scans of the whole input: a hang.)
+TEST(RemeshInput, ExtremeScalesRemeshExactlyAsAtUnitScale) {
+  const Mesh sphere = testing::MakeIcosphere(3);
+  RemeshOptions options;
+  options.levels = 2;
+  RemeshReport unit_report;
+  auto unit = Remesh(sphere, options, &unit_report);
+  ASSERT_TRUE(unit.ok()) << unit.status().ToString();
+  for (const double scale : {0x1p1000, 0x1p-1000, 0x1p-3}) {
+    RemeshReport report;
+    auto scaled = Remesh(ScaledBy(sphere, scale), options, &report);
+    ASSERT_TRUE(scaled.ok()) << scale << ": " << scaled.status().ToString();
+    ASSERT_EQ(scaled->positions.size(), unit->positions.size());
+    for (size_t v = 0; v < unit->positions.size(); ++v) {
+      ASSERT_EQ(scaled->positions[v], unit->positions[v] * scale) << scale << " vertex " << v;
+    }
+    EXPECT_EQ(scaled->kinds, unit->kinds);
+    EXPECT_EQ(report.normal_fraction, unit_report.normal_fraction);
+  }
+  RemeshReport huge_report;
+  auto huge = Remesh(ScaledBy(sphere, 1e300), options, &huge_report);
+  ASSERT_TRUE(huge.ok()) << huge.status().ToString();
+  EXPECT_GE(huge_report.normal_fraction, 0.9);
+}
+
+}  // namespace
+}  // namespace eqmesh
