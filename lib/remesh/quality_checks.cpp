@@ -27,11 +27,14 @@ bool FacesAwayFromInput(const TriangleBvh& bvh, const Mesh& input, const Vec3& a
   return m.dot(n) < 0.0;
 }
 
+double DegenerateDoubleArea(const Mesh& input) {
+  const double diag = BoundingBoxDiagonal(input);
+  return 1e-14 * diag * diag;
+}
+
 StatusOr<FoldReport> CountFoldsAgainstInput(const Mesh& remesh, const Mesh& input) {
   EQMESH_ASSIGN_OR_RETURN(TriangleBvh bvh, TriangleBvh::Build(input));
-  const double diag = BoundingBoxDiagonal(input);
-  // Twice the area below which a face counts as degenerate.
-  const double tiny = 1e-14 * diag * diag;
+  const double tiny = DegenerateDoubleArea(input);
   FoldReport total;
   std::mutex lock;
   ParallelFor(remesh.faces.size(), [&](size_t begin, size_t end, size_t) {

@@ -19,6 +19,10 @@ struct FoldReport {
 
 StatusOr<FoldReport> CountFoldsAgainstInput(const Mesh& remesh, const Mesh& input);
 
+// Twice the area at or below which a face of a remesh of `input` counts as
+// degenerate (1e-14 of the input's squared bounding-box diagonal).
+double DegenerateDoubleArea(const Mesh& input);
+
 class TriangleBvh;
 
 // The fold test behind CountFoldsAgainstInput, for one triangle (a, b, c): its

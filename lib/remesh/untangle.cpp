@@ -31,6 +31,11 @@ constexpr int kClusterRings[] = {2, 3, 4, 6};
 constexpr int kClusterIterations = 8;
 constexpr int kKernelIterations = 48;
 constexpr int kStallSweeps = 24;
+// The untangler's whole budget, in fold tests per finest face: the bench meshes
+// spend 0.12-0.19, dragon_vrip (thousands of folded crevices no move unfolds)
+// spent 7.8 and doubled its remesh time. Counted, not timed, so the result
+// does not depend on the machine; past it, no more moves are tried.
+constexpr double kWorkPerFace = 1.0;
 // Larger clusters are whole folded regions (dragon_vrip's crevices), where a
 // Jacobi smoothing is slow and was never kept.
 constexpr size_t kMaxClusterVertices = 512;
@@ -56,10 +61,19 @@ struct Untangler {
   const std::vector<VertexKind>& kinds;
   std::vector<Edge> input_boundary;  // input edges with one face, by LowerX
   double longest_boundary_edge = 0.0;
+  double degenerate_double_area;
+  // Fold tests the untangler may still make (kWorkPerFace).
+  mutable size_t work_left = 0;
 
   Untangler(const std::vector<Face>& finest, const InputSurface& s, std::vector<Vec3>* p,
             const std::vector<VertexKind>& k)
-      : faces(finest), surface(s), pos(*p), kinds(k), input_boundary(InputBoundaryEdges(*s.mesh)) {
+      : faces(finest),
+        surface(s),
+        pos(*p),
+        kinds(k),
+        input_boundary(InputBoundaryEdges(*s.mesh)),
+        degenerate_double_area(DegenerateDoubleArea(*s.mesh)),
+        work_left(static_cast<size_t>(kWorkPerFace * static_cast<double>(finest.size()))) {
     const std::vector<Vec3>& x = s.mesh->positions;
     std::sort(input_boundary.begin(), input_boundary.end(), [&](const Edge& e, const Edge& f) {
       return LowerX(e) < LowerX(f) || (LowerX(e) == LowerX(f) && e < f);
@@ -78,11 +92,13 @@ struct Untangler {
   }
 
   bool Folded(uint32_t f, double* error) const {
+    if (work_left > 0) --work_left;
     const Face& t = faces[f];
     const Vec3& a = pos[t[0]];
     const Vec3& b = pos[t[1]];
     const Vec3& c = pos[t[2]];
-    if (!((b - a).cross(c - a).squaredNorm() > 0.0)) return true;
+    // A degenerate face is as bad as a folded one (the bench counts both).
+    if (!((b - a).cross(c - a).norm() > degenerate_double_area)) return true;
     return FacesAwayFromInput(*surface.bvh, *surface.mesh, a, b, c, error);
   }
 
@@ -232,6 +248,7 @@ struct Untangler {
   // helps (at a crease the closest same-facing point of a blend is often the
   // vertex's own place again), a small error for a fold removed.
   bool Improve(uint32_t v) {
+    if (work_left == 0) return false;
     const std::pair<size_t, double> before = Score(v);
     if (before.first == 0) return false;
     const Vec3 start = pos[v];
@@ -353,7 +370,7 @@ struct Untangler {
   // iterate if it folds fewer faces without more than kMaxErrorGrowth times
   // the error (or the floor).
   bool SmoothCluster(const std::vector<uint32_t>& cluster, bool to_kernel) {
-    if (cluster.size() > kMaxClusterVertices) return false;
+    if (cluster.size() > kMaxClusterVertices || work_left == 0) return false;
     const std::vector<uint32_t> around = FacesAround(cluster);
     const std::pair<size_t, double> before = FacesScore(around);
     if (before.first == 0) return false;
@@ -368,7 +385,8 @@ struct Untangler {
     std::vector<Vec3> best = saved;
     std::pair<size_t, double> best_score = before;
     const int sweeps = to_kernel ? kKernelIterations : kClusterIterations;
-    for (int it = 0, stalled = 0; it < sweeps && best_score.first > 0 && stalled < kStallSweeps; ++it) {
+    for (int it = 0, stalled = 0; it < sweeps && best_score.first > 0 && stalled < kStallSweeps && work_left > 0;
+         ++it) {
       for (size_t i = 0; i < cluster.size(); ++i) {
         const uint32_t v = cluster[i];
         // The input's orientation where v is now (a sweep may carry it over a crease).
