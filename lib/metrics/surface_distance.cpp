@@ -113,6 +113,21 @@ Status CheckOptions(const CompareOptions& options) {
   return Status::Ok();
 }
 
+// Inputs of ordinary size are measured as they are (bit for bit as before);
+// beyond these scales areas and squared distances would over- or underflow, so
+// they are measured at PowerOfTwoUnitScale. Returns 1 for "as they are".
+constexpr double kLargestUnscaled = 0x1p32, kSmallestUnscaled = 0x1p-32;
+double MeasuringScale(const Mesh& mesh) {
+  const double scale = PowerOfTwoUnitScale(mesh);
+  return scale <= kLargestUnscaled && scale >= kSmallestUnscaled ? 1.0 : scale;
+}
+
+Mesh Scaled(const Mesh& mesh, double scale) {
+  Mesh out = mesh;
+  for (Vec3& p : out.positions) p *= scale;
+  return out;
+}
+
 }  // namespace
 
 uint64_t DefaultSampleCount(const Mesh& a, const Mesh& b) {
@@ -128,11 +143,8 @@ uint64_t DefaultSampleCount(const Mesh& a, const Mesh& b) {
 Status ValidateForCompare(const Mesh& mesh) {
   // AreaSampler::Build makes every check the meter needs (and TriangleBvh's),
   // at the scale CompareSurfaces measures at.
-  const double scale = PowerOfTwoUnitScale(mesh);
-  if (scale <= 0x1p32 && scale >= 0x1p-32) return AreaSampler::Build(mesh).status();
-  Mesh scaled = mesh;
-  for (Vec3& p : scaled.positions) p *= scale;
-  return AreaSampler::Build(scaled).status();
+  const double scale = MeasuringScale(mesh);
+  return AreaSampler::Build(scale == 1.0 ? mesh : Scaled(mesh, scale)).status();
 }
 
 double PsnrDb(double bbox_diagonal, double rms) {
@@ -142,16 +154,6 @@ double PsnrDb(double bbox_diagonal, double rms) {
 
 namespace {
 
-// Inputs of ordinary size are measured as they are (bit for bit as before);
-// beyond these scales areas and squared distances would over- or underflow.
-constexpr double kLargestUnscaled = 0x1p32, kSmallestUnscaled = 0x1p-32;
-
-Mesh Scaled(const Mesh& mesh, double scale) {
-  Mesh out = mesh;
-  for (Vec3& p : out.positions) p *= scale;
-  return out;
-}
-
 StatusOr<SurfaceDistance> CompareAtOwnScale(const Mesh& a, const Mesh& b, const CompareOptions& options);
 
 }  // namespace
@@ -159,8 +161,8 @@ StatusOr<SurfaceDistance> CompareAtOwnScale(const Mesh& a, const Mesh& b, const 
 StatusOr<SurfaceDistance> CompareSurfaces(const Mesh& a, const Mesh& b,
                                           const CompareOptions& options) {
   EQMESH_RETURN_IF_ERROR(CheckOptions(options));
-  const double scale = PowerOfTwoUnitScale(a);
-  if (scale <= kLargestUnscaled && scale >= kSmallestUnscaled) return CompareAtOwnScale(a, b, options);
+  const double scale = MeasuringScale(a);
+  if (scale == 1.0) return CompareAtOwnScale(a, b, options);
   // Both by the same power of two (exact), the lengths back by its inverse.
   EQMESH_ASSIGN_OR_RETURN(SurfaceDistance r, CompareAtOwnScale(Scaled(a, scale), Scaled(b, scale), options));
   for (double* length : {&r.bbox_diagonal, &r.rms_ab, &r.rms_ba, &r.rms, &r.mean_ab, &r.mean_ba, &r.mean,

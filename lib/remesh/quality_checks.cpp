@@ -58,14 +58,19 @@ StatusOr<FoldReport> CountFoldsAgainstInput(const Mesh& remesh, const Mesh& inpu
   return total;
 }
 
-double NormalFraction(const SemiRegularHierarchy& hierarchy, const std::vector<VertexKind>& kinds) {
-  size_t normal = 0, counted = 0;
+NormalCount CountNormal(const SemiRegularHierarchy& hierarchy, const std::vector<VertexKind>& kinds) {
+  NormalCount c;
   for (size_t v = hierarchy.NumVertices(0); v < kinds.size(); ++v) {
     if (kinds[v] == VertexKind::kBoundary) continue;
-    ++counted;
-    normal += kinds[v] == VertexKind::kNormal;
+    ++c.counted;
+    c.normal += kinds[v] == VertexKind::kNormal;
   }
-  return counted ? static_cast<double>(normal) / static_cast<double>(counted) : 1.0;
+  return c;
+}
+
+double NormalFraction(const SemiRegularHierarchy& hierarchy, const std::vector<VertexKind>& kinds) {
+  const NormalCount c = CountNormal(hierarchy, kinds);
+  return c.counted ? static_cast<double>(c.normal) / static_cast<double>(c.counted) : 1.0;
 }
 
 }  // namespace eqmesh

@@ -32,8 +32,13 @@ class TriangleBvh;
 bool FacesAwayFromInput(const TriangleBvh& bvh, const Mesh& input, const Vec3& a, const Vec3& b, const Vec3& c,
                         double* error = nullptr);
 
-// Share of the odd, non-boundary vertices of a remesh that are normal
-// (RemeshReport::normal_fraction); 1 when there are none.
+// The odd, non-boundary vertices of a remesh, and how many of them are normal.
+struct NormalCount {
+  size_t normal = 0, counted = 0;
+};
+NormalCount CountNormal(const SemiRegularHierarchy& hierarchy, const std::vector<VertexKind>& kinds);
+
+// Their normal share (RemeshReport::normal_fraction); 1 when there are none.
 double NormalFraction(const SemiRegularHierarchy& hierarchy, const std::vector<VertexKind>& kinds);
 
 }  // namespace eqmesh

@@ -540,14 +540,9 @@ std::pair<std::vector<VertexKind>, size_t> UntangleFrom(const SemiRegularHierarc
 // How many normal vertices may turn non-normal before the share drops below
 // kMinNormalShare (NormalFraction's count).
 size_t NormalsAboveFloor(const SemiRegularHierarchy& h, const std::vector<VertexKind>& kinds) {
-  size_t normal = 0, counted = 0;
-  for (size_t v = h.NumVertices(0); v < kinds.size(); ++v) {
-    if (kinds[v] == VertexKind::kBoundary) continue;
-    ++counted;
-    normal += kinds[v] == VertexKind::kNormal;
-  }
-  const auto floor = static_cast<size_t>(std::ceil(kMinNormalShare * static_cast<double>(counted)));
-  return normal > floor ? normal - floor : 0;
+  const NormalCount c = CountNormal(h, kinds);
+  const auto floor = static_cast<size_t>(std::ceil(kMinNormalShare * static_cast<double>(c.counted)));
+  return c.normal > floor ? c.normal - floor : 0;
 }
 
 }  // namespace

@@ -190,11 +190,6 @@ TEST(CompareSurfaces, RejectsBadInputWithClearErrors) {
 namespace eqmesh {
 namespace {
 
-Mesh ScaledBy(Mesh mesh, double scale) {
-  for (Vec3& p : mesh.positions) p *= scale;
-  return mesh;
-}
-
 // Squared lengths of a 1e300 or 1e-300 mesh over- or underflow; the meter works
 // at unit scale (a power of two, exact) and reports lengths in the input's units.
 TEST(CompareSurfaces, ExtremeScalesMeasureAsAtUnitScale) {
@@ -205,15 +200,15 @@ TEST(CompareSurfaces, ExtremeScalesMeasureAsAtUnitScale) {
   auto unit = CompareSurfaces(a, b, options);
   ASSERT_TRUE(unit.ok()) << unit.status().ToString();
   for (const double scale : {0x1p900, 0x1p-900}) {
-    auto scaled = CompareSurfaces(ScaledBy(a, scale), ScaledBy(b, scale), options);
+    auto scaled = CompareSurfaces(Scaled(a, scale), Scaled(b, scale), options);
     ASSERT_TRUE(scaled.ok()) << scale << ": " << scaled.status().ToString();
     EXPECT_EQ(scaled->psnr_db, unit->psnr_db) << scale;
     EXPECT_EQ(scaled->rms, unit->rms * scale) << scale;
     EXPECT_EQ(scaled->hausdorff, unit->hausdorff * scale) << scale;
-    EXPECT_TRUE(ValidateForCompare(ScaledBy(a, scale)).ok()) << scale;
+    EXPECT_TRUE(ValidateForCompare(Scaled(a, scale)).ok()) << scale;
   }
   // Not a power of two: the same to rounding.
-  auto huge = CompareSurfaces(ScaledBy(a, 1e300), ScaledBy(b, 1e300), options);
+  auto huge = CompareSurfaces(Scaled(a, 1e300), Scaled(b, 1e300), options);
   ASSERT_TRUE(huge.ok()) << huge.status().ToString();
   EXPECT_NEAR(huge->psnr_db, unit->psnr_db, 1e-6);
 }
