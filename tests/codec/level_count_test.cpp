@@ -70,11 +70,22 @@ TEST(LevelCount, PsnrTargetGivesTheSmallestStreamThatMeetsIt) {
   auto bytes = EncodeChoosingLevels(mesh, options, &report, &levels);
   ASSERT_TRUE(bytes.ok()) << bytes.status().message();
   EXPECT_GE(report.psnr_db, 50.0);
+  // A level count whose uncoded truncation already misses the target is
+  // measured, not searched: it reports that ceiling and no stream was made.
+  size_t skipped = 0;
   for (const LevelCountTrial& t : levels.trials) {
     if (t.feasible) {
       EXPECT_LE(bytes->size(), t.bytes);
     }
+    if (t.coded) continue;
+    ++skipped;
+    EXPECT_FALSE(t.feasible) << t.levels;
+    EXPECT_LT(t.psnr_db, options.target_psnr) << t.levels;
+    EXPECT_EQ(t.bytes, 0u) << t.levels;
   }
+  EXPECT_GE(skipped, 1u) << "this mesh's coarsest level cannot reach 50 dB";
+  ASSERT_FALSE(levels.trials.empty());
+  EXPECT_TRUE(levels.trials.back().coded);
 }
 
 }  // namespace
