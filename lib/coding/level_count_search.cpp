@@ -18,31 +18,28 @@ namespace {
 // again at the default count when the caller asked for --measure.
 constexpr uint64_t kRankingSamples = 250'000;
 
-StatusOr<double> MeasureDecoded(const std::vector<uint8_t>& bytes, const Mesh& original, uint64_t samples) {
+// PSNR of `mesh` against the original at `samples` per direction (0: default).
+StatusOr<double> MeasurePsnr(const Mesh& mesh, const Mesh& original, uint64_t samples) {
 #ifdef EQMESH_HAVE_METRICS
-  EQMESH_ASSIGN_OR_RETURN(Mesh decoded, Decode(bytes.data(), bytes.size()));
   CompareOptions compare;
   compare.samples = samples;
-  EQMESH_ASSIGN_OR_RETURN(SurfaceDistance d, CompareSurfaces(original, decoded, compare));
+  EQMESH_ASSIGN_OR_RETURN(SurfaceDistance d, CompareSurfaces(original, mesh, compare));
   return d.psnr_db;
 #else
-  (void)bytes, (void)original, (void)samples;
+  (void)mesh, (void)original, (void)samples;
   return UnsupportedFeature("choosing the level count needs eqmesh_metrics, not in this build");
 #endif
+}
+
+StatusOr<double> MeasureDecoded(const std::vector<uint8_t>& bytes, const Mesh& original, uint64_t samples) {
+  EQMESH_ASSIGN_OR_RETURN(Mesh decoded, Decode(bytes.data(), bytes.size()));
+  return MeasurePsnr(decoded, original, samples);
 }
 
 // PSNR of the uncoded mesh truncated to `levels`: no stream of that many levels
 // can do better, so a PSNR target above it need not be searched at all.
 StatusOr<double> CeilingPsnr(const SemiRegularMesh& mesh, int levels, const Mesh& original) {
-#ifdef EQMESH_HAVE_METRICS
-  CompareOptions compare;
-  compare.samples = kRankingSamples;
-  EQMESH_ASSIGN_OR_RETURN(SurfaceDistance d, CompareSurfaces(original, ExtractLevel(mesh, levels), compare));
-  return d.psnr_db;
-#else
-  (void)mesh, (void)levels, (void)original;
-  return UnsupportedFeature("choosing the level count needs eqmesh_metrics, not in this build");
-#endif
+  return MeasurePsnr(ExtractLevel(mesh, levels), original, kRankingSamples);
 }
 
 // Coding only adds error to the truncated geometry; this margin covers the

@@ -6,7 +6,6 @@
 #include <string>
 #include <chrono>
 #include <cmath>
-#include <limits>
 
 #include "mesh/mesh_topology.h"
 #include "mesh/repair.h"

@@ -380,12 +380,11 @@ struct Untangler {
     double floor = 0.0;
     for (uint32_t f : around) floor += ErrorFloor(f);
     const double allowed = std::max(kMaxErrorGrowth * before.second, floor);
-    std::vector<Vec3> saved, next(cluster.size());
-    for (uint32_t v : cluster) saved.push_back(pos[v]);
     // The fold count does not fall monotonically along the sweeps: the best
-    // iterate is kept, not the last; sweeps end when all folds are gone or
-    // kStallSweeps found nothing better.
-    std::vector<Vec3> best = saved;
+    // iterate is kept (at first the start), not the last; sweeps end when all
+    // folds are gone or kStallSweeps found nothing better.
+    std::vector<Vec3> best, next(cluster.size());
+    for (uint32_t v : cluster) best.push_back(pos[v]);
     std::pair<size_t, double> best_score = before;
     const int sweeps = to_kernel ? kKernelIterations : kClusterIterations;
     for (int it = 0, stalled = 0; it < sweeps && best_score.first > 0 && stalled < kStallSweeps && work_left > 0;
@@ -426,17 +425,18 @@ std::vector<uint8_t> MovableFrom(uint32_t first, const std::vector<VertexKind>& 
   return movable;
 }
 
-// Single-vertex moves, pass after pass, starting from the corners of the faces in
-// `folded` that still fold; marks what moved.
 // Normal vertices a move may still turn non-normal; unlimited when absent.
 class NormalBudget {
  public:
   explicit NormalBudget(std::optional<size_t> left) : left_(left) {}
-  // Normal vertices of `vertices` not moved yet: what moving them costs.
-  size_t Cost(const std::vector<uint32_t>& vertices, const std::vector<VertexKind>& kinds,
-              const std::vector<uint8_t>& moved) const {
+  // 1 if v is normal and not moved yet: what moving it costs.
+  static size_t Cost(uint32_t v, const std::vector<VertexKind>& kinds, const std::vector<uint8_t>& moved) {
+    return kinds[v] == VertexKind::kNormal && !moved[v];
+  }
+  static size_t Cost(const std::vector<uint32_t>& vertices, const std::vector<VertexKind>& kinds,
+                     const std::vector<uint8_t>& moved) {
     size_t cost = 0;
-    for (uint32_t v : vertices) cost += kinds[v] == VertexKind::kNormal && !moved[v];
+    for (uint32_t v : vertices) cost += Cost(v, kinds, moved);
     return cost;
   }
   bool Affords(size_t cost) const { return !left_ || cost <= *left_; }
@@ -448,6 +448,8 @@ class NormalBudget {
   std::optional<size_t> left_;
 };
 
+// Single-vertex moves, pass after pass, starting from the corners of the faces in
+// `folded` that still fold, within `budget`; marks what moved.
 void MoveSingleVertices(Untangler* u, const std::vector<uint32_t>& folded, const std::vector<uint8_t>& movable,
                         NormalBudget* budget, std::vector<uint8_t>* moved) {
   std::vector<uint8_t> suspect(u->pos.size(), 0);
@@ -460,7 +462,7 @@ void MoveSingleVertices(Untangler* u, const std::vector<uint32_t>& folded, const
     for (uint32_t v = 0; v < u->pos.size(); ++v) {
       if (!suspect[v] || !movable[v]) continue;
       suspect[v] = 0;
-      const size_t cost = budget->Cost({v}, u->kinds, *moved);
+      const size_t cost = NormalBudget::Cost(v, u->kinds, *moved);
       if (!budget->Affords(cost) || !u->Improve(v)) continue;
       budget->Spend(cost);
       changed = true;
@@ -527,7 +529,7 @@ std::pair<std::vector<VertexKind>, size_t> UntangleFrom(const SemiRegularHierarc
   for (const int rings : kClusterRings) {
     MoveSingleVertices(u, folded, movable, &budget, &moved);
     for (const std::vector<uint32_t>& cluster : u->FoldClusters(folded, movable, rings)) {
-      const size_t cost = budget.Cost(cluster, kinds, moved);
+      const size_t cost = NormalBudget::Cost(cluster, kinds, moved);
       if (!budget.Affords(cost)) continue;
       if (!u->SmoothCluster(cluster, false) && !u->SmoothCluster(cluster, true)) continue;
       budget.Spend(cost);
