@@ -91,6 +91,10 @@ int RunRemesh(int argc, char** argv) {
   j["kept_exactly_vertices"] = report.kept_exactly_vertices;
   j["boundary_loops"] = report.boundary_loops;
   j["seconds"] = report.seconds;
+  j["stage_seconds"] = {{"prepare", report.stage_seconds.prepare},
+                        {"base_domain", report.stage_seconds.base_domain},
+                        {"refine", report.stage_seconds.refine},
+                        {"untangle", report.stage_seconds.untangle}};
   // Original first: its bounding-box diagonal is the PSNR peak.
   auto cmp = eqmesh::CompareSurfaces(*mesh, finest, eqmesh::CompareOptions());
   if (cmp.ok()) {

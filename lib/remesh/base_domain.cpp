@@ -16,11 +16,14 @@
 #include "remesh/parallel_for.h"
 #include "remesh/quality_checks.h"
 #include "remesh/ring_flattening.h"
+#include "remesh/spin_team.h"
 
 namespace eqmesh {
 namespace {
 
 constexpr uint32_t kNone = 0xffffffffu;
+// Threads that re-cost a collapse's ring (about 6 vertices): more would mostly wait.
+constexpr int kTeamWorkers = 2;
 constexpr size_t kMaxValence = 12;
 // A collapse may not turn a face by more than ~80 degrees (no normal flips).
 constexpr double kMinNormalCos = 0.17;
@@ -86,7 +89,9 @@ class Simplifier {
   // worst_quality: of the fan's triangles (the caller ranks candidates by it).
   double CollapseCost(size_t p, const Ring& ring, double worst_quality, double bound,
                       CostScratch* scratch) const;
-  void Enqueue(uint32_t v);
+  // Re-queues the vertices of a changed ring with fresh costs, computed on the
+  // team (the pushes stay in ring order, so the queue does not depend on it).
+  void EnqueueRing(const std::vector<uint32_t>& verts, SpinTeam* team);
 
   bool TryCollapse(uint32_t v, uint32_t u, const Ring& ring);
   bool TopologyAllows(uint32_t v, size_t p, const Ring& ring) const;
@@ -111,6 +116,7 @@ class Simplifier {
   std::vector<uint32_t> stamp_;
   std::vector<std::vector<std::pair<double, uint32_t>>> candidates_;  // of the queued entry
   CostScratch scratch_;  // for the sequential evaluations
+  std::vector<CostScratch> team_scratch_;  // one per team worker
   std::vector<Vec3> normal_;  // area-weighted input vertex normals
   std::vector<uint32_t> loop_of_;
   std::vector<size_t> loop_size_;
@@ -350,15 +356,20 @@ void Simplifier::EnqueueAll() {
   }
 }
 
-// Queues v with a freshly computed cost and keeps its candidates for the pop.
-void Simplifier::Enqueue(uint32_t v) {
-  ++stamp_[v];
-  candidates_[v].clear();
-  Ring ring;
-  if (!alive_[v] || !BuildRing(v, &ring)) return;
-  candidates_[v] = Candidates(v, ring, false, &scratch_);
-  if (candidates_[v].empty()) return;
-  queue_.push({candidates_[v].front().first, v, stamp_[v]});
+void Simplifier::EnqueueRing(const std::vector<uint32_t>& verts, SpinTeam* team) {
+  for (uint32_t w : verts) {
+    ++stamp_[w];
+    candidates_[w].clear();
+  }
+  team->Run(verts.size(), [&](size_t i, int worker) {
+    const uint32_t w = verts[i];
+    Ring ring;
+    if (!alive_[w] || !BuildRing(w, &ring)) return;
+    candidates_[w] = Candidates(w, ring, false, &team_scratch_[static_cast<size_t>(worker)]);
+  });
+  for (uint32_t w : verts) {
+    if (!candidates_[w].empty()) queue_.push({candidates_[w].front().first, w, stamp_[w]});
+  }
 }
 
 bool Simplifier::TopologyAllows(uint32_t v, size_t p, const Ring& ring) const {
@@ -415,7 +426,12 @@ bool Simplifier::GeometryAllows(uint32_t v, size_t p, const Ring& ring, const st
     if (lo > 0.0 && n_old.dot(n_new) < kMinNormalCos * lo * ln) return false;
     const double q = Quality(pos_[u], a, b);
     if (q < kMinQuality && q < worst_old) return false;
-    if (FacesAwayFromInput(pos_[u], a, b)) return false;
+  }
+  // Last, once every cheap test passed: a closest-point query per wedge.
+  for (size_t m = 0; m < wedges; ++m) {
+    const size_t m1 = (m + 1) % d;
+    if (ring.verts[m] == u || ring.verts[m1] == u) continue;
+    if (FacesAwayFromInput(pos_[u], pos_[ring.verts[m]], pos_[ring.verts[m1]])) return false;
   }
   return true;
 }
@@ -591,6 +607,8 @@ void Simplifier::Apply(uint32_t v, size_t p, const Ring& ring, const std::vector
 
 void Simplifier::Run(size_t target, const ProgressFn& progress) {
   EnqueueAll();
+  SpinTeam team(std::min(WorkerThreadLimit(), kTeamWorkers));
+  team_scratch_.resize(static_cast<size_t>(team.workers()));
   const size_t start = alive_count_;
   size_t reported = 0;
   Ring ring;
@@ -612,7 +630,7 @@ void Simplifier::Run(size_t target, const ProgressFn& progress) {
       if (TryCollapse(v, cand.second, ring)) {
         // Only the stars of v's ring changed (their faces and buckets); every
         // other vertex keeps its cost.
-        for (uint32_t w : ring.verts) Enqueue(w);
+        EnqueueRing(ring.verts, &team);
         done = true;
         break;
       }

@@ -15,9 +15,12 @@ bool FacesAwayFromInput(const TriangleBvh& bvh, const Mesh& input, const Vec3& a
                         double* error) {
   const Vec3 n = (b - a).cross(c - a);
   const Vec3 centroid = (a + b + c) / 3.0;
-  // The triangle's vertices lie on (or near) the input, so its centroid is
-  // within its longest edge of it: a bounded search prunes most of the tree.
-  const double reach = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+  // The triangle's corners lie on (or near) the input, so the nearest corner
+  // bounds the centroid's distance to it: a bounded search prunes most of the
+  // tree. A bound that misses (a corner off the surface) falls back to the full
+  // search below, and a bound never changes which face is found (the traversal
+  // order does not depend on it), so the result is the unbounded query's.
+  const double reach = std::min({(a - centroid).norm(), (b - centroid).norm(), (c - centroid).norm()}) * (1.0 + 1e-9);
   ClosestPointResult cp = bvh.ClosestPoint(centroid, reach);
   if (!cp.found()) cp = bvh.ClosestPoint(centroid);
   if (!cp.found()) return false;

@@ -219,6 +219,13 @@ StatusOr<Refinement> RefineAllLevels(const RefineContext& c) {
 
 StatusOr<SemiRegularMesh> Remesh(const Mesh& input, const RemeshOptions& options, RemeshReport* report_out) {
   const auto start = std::chrono::steady_clock::now();
+  auto lap = start;
+  const auto seconds_since_lap = [&lap] {
+    const auto now = std::chrono::steady_clock::now();
+    const double s = std::chrono::duration<double>(now - lap).count();
+    lap = now;
+    return s;
+  };
   RemeshReport local_report;
   RemeshReport& report = report_out ? *report_out : local_report;
   report = RemeshReport();
@@ -252,11 +259,13 @@ StatusOr<SemiRegularMesh> Remesh(const Mesh& input, const RemeshOptions& options
   const double scale = PowerOfTwoUnitScale(prep.surface);
   for (Vec3& p : prep.surface.positions) p *= scale;
   EQMESH_ASSIGN_OR_RETURN(TriangleBvh bvh, TriangleBvh::Build(prep.surface));
+  report.stage_seconds.prepare = seconds_since_lap();
   BaseDomainOptions base_options;
   base_options.target_vertices = AutoBaseTarget(prep, options);
   base_options.progress = options.progress;
   EQMESH_ASSIGN_OR_RETURN(BaseDomain base, BuildBaseDomain(prep.surface, bvh, prep.boundary, base_options));
   report.base_vertices = base.base_to_input.size();
+  report.stage_seconds.base_domain = seconds_since_lap();
   if (report.base_vertices > base_options.target_vertices) {
     report.notes.push_back("simplification stalled at " + std::to_string(report.base_vertices) +
                            " base vertices (target " + std::to_string(base_options.target_vertices) + ")");
@@ -266,7 +275,9 @@ StatusOr<SemiRegularMesh> Remesh(const Mesh& input, const RemeshOptions& options
   const double diagonal = BoundingBoxDiagonal(prep.surface);
   const RefineContext context{base, prep.surface, surface, options, diagonal, prep.input_vertices};
   EQMESH_ASSIGN_OR_RETURN(Refinement best, RefineAllLevels(context));
+  report.stage_seconds.refine = seconds_since_lap();
   UntangleFinestLevel(best.hierarchy, surface, best.finest_folded_faces, &best.positions, &best.kinds);
+  report.stage_seconds.untangle = seconds_since_lap();
   CountNormalVertices(best.hierarchy, best.kinds, &report);
   out.hierarchy = std::move(best.hierarchy);
   out.positions = std::move(best.positions);

@@ -46,6 +46,13 @@ struct RemeshReport {
   size_t kept_exactly_vertices = 0;
   size_t boundary_loops = 0;
   double seconds = 0.0;
+  // Wall seconds of each stage, so speed work knows where the time goes.
+  struct StageSeconds {
+    double prepare = 0.0;      // checks, components, unit scale, search tree
+    double base_domain = 0.0;  // simplification and parameterization
+    double refine = 0.0;       // piercing of every level
+    double untangle = 0.0;
+  } stage_seconds;
   std::vector<std::string> notes;
 };
 

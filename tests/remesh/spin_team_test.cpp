@@ -1,0 +1,51 @@
+#include "remesh/spin_team.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <thread>
+#include <vector>
+
+namespace eqmesh {
+namespace {
+
+// Every batch calls each index exactly once, from a worker in range, and
+// returns only after all of them finished (the counts are read right after).
+void ExpectEachIndexOnce(SpinTeam* team, size_t n) {
+  std::vector<std::atomic<int>> calls(n);
+  std::atomic<bool> bad_worker{false};
+  team->Run(n, [&](size_t i, int worker) {
+    if (worker < 0 || worker >= team->workers()) bad_worker = true;
+    calls[i].fetch_add(1);
+  });
+  EXPECT_FALSE(bad_worker);
+  for (size_t i = 0; i < n; ++i) ASSERT_EQ(calls[i].load(), 1) << "index " << i << " of " << n;
+}
+
+TEST(SpinTeam, ManyTinyBatchesCallEveryIndexOnce) {
+  SpinTeam team(2);
+  EXPECT_EQ(team.workers(), 2);
+  for (int batch = 0; batch < 20000; ++batch) ExpectEachIndexOnce(&team, static_cast<size_t>(batch % 9));
+}
+
+TEST(SpinTeam, WakesHelpersThatFellAsleep) {
+  SpinTeam team(3);
+  for (int batch = 0; batch < 5; ++batch) {
+    ExpectEachIndexOnce(&team, 64);
+    // Longer than the spin and yield phases: the helpers go to sleep.
+    std::this_thread::sleep_for(std::chrono::milliseconds(30));
+  }
+}
+
+TEST(SpinTeam, OneWorkerRunsInline) {
+  SpinTeam team(1);
+  EXPECT_EQ(team.workers(), 1);
+  const std::thread::id caller = std::this_thread::get_id();
+  bool elsewhere = false;
+  team.Run(10, [&](size_t, int) { elsewhere |= std::this_thread::get_id() != caller; });
+  EXPECT_FALSE(elsewhere);
+}
+
+}  // namespace
+}  // namespace eqmesh
