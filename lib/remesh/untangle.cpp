@@ -9,6 +9,7 @@
 
 #include "mesh/mesh_topology.h"
 #include "remesh/fan_kernel.h"
+#include "remesh/patch_flattening.h"
 #include "remesh/quality_checks.h"
 #include "wavelet/butterfly.h"
 
@@ -552,12 +553,26 @@ size_t NormalsAboveFloor(const SemiRegularHierarchy& h, const std::vector<Vertex
 
 }  // namespace
 
-size_t UntangleFinestLevel(const SemiRegularHierarchy& hierarchy, const InputSurface& surface,
-                           const std::vector<uint32_t>& folded, std::vector<Vec3>* positions,
-                           std::vector<VertexKind>* kinds) {
+namespace {
+
+// Faces that may still fold: those that folded, and those around a moved vertex.
+std::vector<uint32_t> MaybeFolded(const Untangler& u, const std::vector<uint32_t>& folded,
+                                  const std::vector<Vec3>& start) {
+  std::vector<uint32_t> faces = folded;
+  for (uint32_t v = 0; v < u.pos.size(); ++v) {
+    if (u.pos[v] == start[v]) continue;
+    faces.insert(faces.end(), u.incident.begin() + u.offsets[v], u.incident.begin() + u.offsets[v + 1]);
+  }
+  std::sort(faces.begin(), faces.end());
+  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+  return faces;
+}
+
+// The untangling of UntangleFinestLevel without the patch flattening.
+size_t MoveFoldedCorners(const SemiRegularHierarchy& hierarchy, const std::vector<uint32_t>& folded,
+                         std::vector<VertexKind>* kinds, Untangler* u) {
   const int levels = hierarchy.levels();
-  if (levels < 1 || folded.empty()) return 0;
-  Untangler u(hierarchy.Faces(levels), surface, positions, *kinds);
+  std::vector<Vec3>* positions = &u->pos;
   // Every level may move, as deep as the normal share allows (a coarse vertex's
   // move makes every later vertex predicted from it non-normal). The finest
   // level alone comes last, with a budget: its moves enter no stencil, so each
@@ -566,20 +581,35 @@ size_t UntangleFinestLevel(const SemiRegularHierarchy& hierarchy, const InputSur
   const int last_two = std::max(0, levels - 2);
   if (NormalFraction(hierarchy, *kinds) < kMinNormalShare) {
     // A remesh already below the floor (dragon_vrip's): the last two levels, freely.
-    auto [trial, marked] = UntangleFrom(hierarchy, last_two, folded, *kinds, std::nullopt, &u);
+    auto [trial, marked] = UntangleFrom(hierarchy, last_two, folded, *kinds, std::nullopt, u);
     *kinds = std::move(trial);
     return marked;
   }
   for (int first = 0; first < levels - 1; ++first) {
-    auto [trial, marked] = UntangleFrom(hierarchy, first, folded, *kinds, std::nullopt, &u);
+    auto [trial, marked] = UntangleFrom(hierarchy, first, folded, *kinds, std::nullopt, u);
     if (NormalFraction(hierarchy, trial) >= kMinNormalShare) {
       *kinds = std::move(trial);
       return marked;
     }
     *positions = start;
   }
-  auto [trial, marked] = UntangleFrom(hierarchy, levels - 1, folded, *kinds, NormalsAboveFloor(hierarchy, *kinds), &u);
+  auto [trial, marked] = UntangleFrom(hierarchy, levels - 1, folded, *kinds, NormalsAboveFloor(hierarchy, *kinds), u);
   *kinds = std::move(trial);
+  return marked;
+}
+
+}  // namespace
+
+size_t UntangleFinestLevel(const SemiRegularHierarchy& hierarchy, const InputSurface& surface,
+                           const std::vector<uint32_t>& folded, std::vector<Vec3>* positions,
+                           std::vector<VertexKind>* kinds) {
+  if (hierarchy.levels() < 1 || folded.empty()) return 0;
+  Untangler u(hierarchy.Faces(hierarchy.levels()), surface, positions, *kinds);
+  const std::vector<Vec3> start = *positions;
+  size_t marked = MoveFoldedCorners(hierarchy, folded, kinds, &u);
+  const std::vector<uint8_t> flattened =
+      FlattenFoldedPatches(hierarchy, surface, *kinds, MaybeFolded(u, folded, start), positions);
+  marked += MarkMovedNonNormal(hierarchy, flattened, kinds);
   return marked;
 }
 

@@ -1,0 +1,216 @@
+// Coarse-patch flattening of the folds left after untangling; see patch_flattening.h.
+#include "remesh/patch_flattening.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <utility>
+
+#include <Eigen/Geometry>
+
+#include "remesh/quality_checks.h"
+#include "wavelet/butterfly.h"
+
+namespace eqmesh {
+namespace {
+
+// How many levels above the finest a patch may start: 3 refills at most 64
+// finest faces per fold (skull_50k: the same folds fixed with 2, 3 or 4).
+constexpr int kMaxLevelsUp = 3;
+// Rounds over the faces a refill changed.
+constexpr int kRounds = 3;
+// A refill may leave no vertex farther from the input than this share of the
+// finest edge length (the patch face's longest edge over 2^levels below it);
+// see the header for the measurement.
+constexpr double kMaxOffSurfaceShare = 0.5;
+
+// A vertex refinement created inside a patch: level m's odd vertex v, which
+// splits edge `edge` of level m.
+struct PatchVertex {
+  uint32_t v;
+  Edge edge;
+  int level;
+};
+
+class PatchFlattener {
+ public:
+  PatchFlattener(const SemiRegularHierarchy& h, const InputSurface& s, const std::vector<VertexKind>& kinds,
+                 std::vector<Vec3>* pos)
+      : h_(h),
+        s_(s),
+        kinds_(kinds),
+        pos_(*pos),
+        tiny_(DegenerateDoubleArea(*s.mesh)),
+        moved_(pos->size(), 0),
+        stencils_(static_cast<size_t>(h.levels())) {
+    const std::vector<Face>& finest = h_.Faces(h_.levels());
+    offsets_.assign(pos_.size() + 1, 0);
+    for (const Face& t : finest) {
+      for (uint32_t v : t) ++offsets_[v + 1];
+    }
+    for (size_t v = 0; v < pos_.size(); ++v) offsets_[v + 1] += offsets_[v];
+    incident_.resize(offsets_.back());
+    std::vector<uint32_t> fill(offsets_.begin(), offsets_.end() - 1);
+    for (uint32_t f = 0; f < finest.size(); ++f) {
+      for (uint32_t v : finest[f]) incident_[fill[v]++] = f;
+    }
+  }
+
+  // Rounds over the faces that may fold; a refill changes the faces around its
+  // vertices, which the next round looks at again.
+  void Repair(std::vector<uint32_t> candidates) {
+    const int levels = h_.levels();
+    for (int round = 0; round < kRounds && !candidates.empty(); ++round) {
+      std::vector<uint32_t> next;
+      for (uint32_t f : candidates) {
+        if (!Folded(levels, f)) continue;
+        next.push_back(f);
+        for (int up = 1; up <= std::min(kMaxLevelsUp, levels); ++up) {
+          std::vector<PatchVertex> refilled;
+          if (!TryFlatten(levels - up, f >> (2 * up), &refilled)) continue;
+          const std::vector<uint32_t> around = FacesAround(refilled);
+          next.insert(next.end(), around.begin(), around.end());
+          break;
+        }
+      }
+      std::sort(next.begin(), next.end());
+      next.erase(std::unique(next.begin(), next.end()), next.end());
+      if (next == candidates) break;
+      candidates = std::move(next);
+    }
+  }
+
+  std::vector<uint8_t> TakeMoved() { return std::move(moved_); }
+
+ private:
+  // The remesh's fold test (quality_checks.h) on face f of `level`; degenerate counts.
+  bool Folded(int level, uint32_t f) const {
+    const Face& t = h_.Faces(level)[f];
+    const Vec3& a = pos_[t[0]];
+    const Vec3& b = pos_[t[1]];
+    const Vec3& c = pos_[t[2]];
+    if (!((b - a).cross(c - a).norm() > tiny_)) return true;
+    return FacesAwayFromInput(*s_.bvh, *s_.mesh, a, b, c);
+  }
+
+  // Vertices created inside face p of `level` or on its edges, coarse to fine,
+  // each with the two corners of the edge it splits; false when one lies on a
+  // boundary curve (moving it would take it off the input's boundary).
+  bool PatchVertices(int level, uint32_t p, std::vector<PatchVertex>* out) const {
+    out->clear();
+    uint64_t first = p, count = 1;
+    for (int m = level; m < h_.levels(); ++m, first *= 4, count *= 4) {
+      const std::vector<Face>& faces = h_.Faces(m);
+      const std::vector<Face>& children = h_.Faces(m + 1);
+      for (uint64_t g = first; g < first + count; ++g) {
+        // Child 3 of g is (m_ab, m_bc, m_ca) (semi_regular.h).
+        const Face& t = faces[g];
+        const Face& mid = children[4 * g + 3];
+        const Edge edges[3] = {{t[0], t[1]}, {t[1], t[2]}, {t[2], t[0]}};
+        for (int i = 0; i < 3; ++i) {
+          if (kinds_[mid[i]] == VertexKind::kBoundary) return false;
+          out->push_back({mid[i], edges[i], m});
+        }
+      }
+    }
+    return true;
+  }
+
+  // Finest faces around the given vertices, each once.
+  std::vector<uint32_t> FacesAround(const std::vector<PatchVertex>& verts) const {
+    std::vector<uint32_t> faces;
+    for (const PatchVertex& p : verts) {
+      faces.insert(faces.end(), incident_.begin() + offsets_[p.v], incident_.begin() + offsets_[p.v + 1]);
+    }
+    std::sort(faces.begin(), faces.end());
+    faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+    return faces;
+  }
+
+  size_t CountFolded(const std::vector<uint32_t>& faces) const {
+    size_t n = 0;
+    for (uint32_t f : faces) n += Folded(h_.levels(), f);
+    return n;
+  }
+
+  const StencilTable& Stencils(int level) {
+    if (!stencils_[static_cast<size_t>(level)]) stencils_[static_cast<size_t>(level)] = BuildButterflyStencils(h_, level);
+    return *stencils_[static_cast<size_t>(level)];
+  }
+
+  // Puts every patch vertex where refinement with zero details would: at its
+  // butterfly prediction (smooth, follows the surface's curvature) or at its
+  // edge's midpoint (flat: the coarse face's own linear subdivision). Coarse
+  // first, so each reads its stencil's already replaced values. Shared edges
+  // are listed twice and get the same value both times.
+  void Refill(const std::vector<PatchVertex>& verts, bool smooth) {
+    for (const PatchVertex& p : verts) {
+      if (!smooth) {
+        pos_[p.v] = 0.5 * (pos_[p.edge[0]] + pos_[p.edge[1]]);
+        continue;
+      }
+      const StencilTable& st = Stencils(p.level);
+      const uint32_t k = p.v - h_.NumVertices(p.level);
+      Vec3 x = Vec3::Zero();
+      for (uint32_t i = st.offsets[k]; i < st.offsets[k + 1]; ++i) x += st.weights[i] * pos_[st.indices[i]];
+      pos_[p.v] = x;
+    }
+  }
+
+  bool NearInput(const std::vector<PatchVertex>& verts, double reach) const {
+    for (const PatchVertex& p : verts) {
+      if (!s_.bvh->ClosestPoint(pos_[p.v], reach).found()) return false;
+    }
+    return true;
+  }
+
+  void Restore(const std::vector<PatchVertex>& verts, const std::vector<Vec3>& saved) {
+    for (size_t i = 0; i < verts.size(); ++i) pos_[verts[i].v] = saved[i];
+  }
+
+  // Refills face p of `level` (smooth, else flat) when that folds fewer of the
+  // faces around it.
+  bool TryFlatten(int level, uint32_t p, std::vector<PatchVertex>* refilled) {
+    if (Folded(level, p)) return false;
+    const Face& t = h_.Faces(level)[p];
+    const double reach = kMaxOffSurfaceShare * std::ldexp(1.0, level - h_.levels()) * std::max({(pos_[t[1]] - pos_[t[0]]).norm(), (pos_[t[2]] - pos_[t[1]]).norm(),
+                                                   (pos_[t[0]] - pos_[t[2]]).norm()});
+    std::vector<PatchVertex> verts;
+    if (!PatchVertices(level, p, &verts)) return false;
+    const std::vector<uint32_t> around = FacesAround(verts);
+    const size_t before = CountFolded(around);
+    std::vector<Vec3> saved;
+    for (const PatchVertex& pv : verts) saved.push_back(pos_[pv.v]);
+    for (const bool smooth : {true, false}) {
+      Refill(verts, smooth);
+      if (NearInput(verts, reach) && CountFolded(around) < before) {
+        for (const PatchVertex& pv : verts) moved_[pv.v] = 1;
+        *refilled = std::move(verts);
+        return true;
+      }
+      Restore(verts, saved);
+    }
+    return false;
+  }
+
+  const SemiRegularHierarchy& h_;
+  const InputSurface& s_;
+  const std::vector<VertexKind>& kinds_;
+  std::vector<Vec3>& pos_;
+  double tiny_;
+  std::vector<uint8_t> moved_;
+  std::vector<uint32_t> offsets_, incident_;  // finest vertex -> faces (CSR)
+  std::vector<std::optional<StencilTable>> stencils_;  // per level, built on first use
+};
+
+}  // namespace
+
+std::vector<uint8_t> FlattenFoldedPatches(const SemiRegularHierarchy& hierarchy, const InputSurface& surface,
+                                          const std::vector<VertexKind>& kinds,
+                                          const std::vector<uint32_t>& candidates, std::vector<Vec3>* positions) {
+  PatchFlattener flattener(hierarchy, surface, kinds, positions);
+  flattener.Repair(candidates);
+  return flattener.TakeMoved();
+}
+
+}  // namespace eqmesh
