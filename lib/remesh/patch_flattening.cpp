@@ -3,13 +3,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <optional>
 #include <utility>
 
 #include <Eigen/Geometry>
 
 #include "remesh/quality_checks.h"
-#include "wavelet/butterfly.h"
 
 namespace eqmesh {
 namespace {
@@ -35,14 +33,14 @@ struct PatchVertex {
 class PatchFlattener {
  public:
   PatchFlattener(const SemiRegularHierarchy& h, const InputSurface& s, const std::vector<VertexKind>& kinds,
-                 std::vector<Vec3>* pos)
+                 StencilCache* stencils, std::vector<Vec3>* pos)
       : h_(h),
         s_(s),
         kinds_(kinds),
         pos_(*pos),
         tiny_(DegenerateDoubleArea(*s.mesh)),
         moved_(pos->size(), 0),
-        stencils_(static_cast<size_t>(h.levels())) {
+        stencils_(*stencils) {
     const std::vector<Face>& finest = h_.Faces(h_.levels());
     offsets_.assign(pos_.size() + 1, 0);
     for (const Face& t : finest) {
@@ -133,11 +131,6 @@ class PatchFlattener {
     return n;
   }
 
-  const StencilTable& Stencils(int level) {
-    if (!stencils_[static_cast<size_t>(level)]) stencils_[static_cast<size_t>(level)] = BuildButterflyStencils(h_, level);
-    return *stencils_[static_cast<size_t>(level)];
-  }
-
   // Puts every patch vertex where refinement with zero details would: at its
   // butterfly prediction (smooth, follows the surface's curvature) or at its
   // edge's midpoint (flat: the coarse face's own linear subdivision). Coarse
@@ -149,7 +142,7 @@ class PatchFlattener {
         pos_[p.v] = 0.5 * (pos_[p.edge[0]] + pos_[p.edge[1]]);
         continue;
       }
-      const StencilTable& st = Stencils(p.level);
+      const StencilTable& st = stencils_.Level(p.level);
       const uint32_t k = p.v - h_.NumVertices(p.level);
       Vec3 x = Vec3::Zero();
       for (uint32_t i = st.offsets[k]; i < st.offsets[k + 1]; ++i) x += st.weights[i] * pos_[st.indices[i]];
@@ -200,15 +193,16 @@ class PatchFlattener {
   double tiny_;
   std::vector<uint8_t> moved_;
   std::vector<uint32_t> offsets_, incident_;  // finest vertex -> faces (CSR)
-  std::vector<std::optional<StencilTable>> stencils_;  // per level, built on first use
+  StencilCache& stencils_;
 };
 
 }  // namespace
 
 std::vector<uint8_t> FlattenFoldedPatches(const SemiRegularHierarchy& hierarchy, const InputSurface& surface,
                                           const std::vector<VertexKind>& kinds,
-                                          const std::vector<uint32_t>& candidates, std::vector<Vec3>* positions) {
-  PatchFlattener flattener(hierarchy, surface, kinds, positions);
+                                          const std::vector<uint32_t>& candidates, StencilCache* stencils,
+                                          std::vector<Vec3>* positions) {
+  PatchFlattener flattener(hierarchy, surface, kinds, stencils, positions);
   flattener.Repair(candidates);
   return flattener.TakeMoved();
 }

@@ -26,6 +26,7 @@
 
 #include "mesh/semi_regular.h"
 #include "remesh/piercing.h"
+#include "remesh/stencil_cache.h"
 
 namespace eqmesh {
 
@@ -34,6 +35,7 @@ namespace eqmesh {
 // returns which vertices moved.
 std::vector<uint8_t> FlattenFoldedPatches(const SemiRegularHierarchy& hierarchy, const InputSurface& surface,
                                           const std::vector<VertexKind>& kinds,
-                                          const std::vector<uint32_t>& candidates, std::vector<Vec3>* positions);
+                                          const std::vector<uint32_t>& candidates, StencilCache* stencils,
+                                          std::vector<Vec3>* positions);
 
 }  // namespace eqmesh

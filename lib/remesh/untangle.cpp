@@ -11,7 +11,7 @@
 #include "remesh/fan_kernel.h"
 #include "remesh/patch_flattening.h"
 #include "remesh/quality_checks.h"
-#include "wavelet/butterfly.h"
+#include "remesh/stencil_cache.h"
 
 namespace eqmesh {
 namespace {
@@ -493,12 +493,12 @@ std::vector<uint8_t> DirtyAtLevel(const SemiRegularHierarchy& h, int j, const st
 // refinement (a vertex of level j is in the stencils of all later levels): all
 // of them become non-normal. Returns how many normal vertices that concerned.
 size_t MarkMovedNonNormal(const SemiRegularHierarchy& h, const std::vector<uint8_t>& moved,
-                          std::vector<VertexKind>* kinds) {
+                          StencilCache* cache, std::vector<VertexKind>* kinds) {
   std::vector<uint8_t> affected = moved;
   for (int j = 0; j < h.levels(); ++j) {
     const std::vector<uint8_t> dirty = DirtyAtLevel(h, j, moved);
     if (std::find(dirty.begin(), dirty.end(), 1) == dirty.end()) continue;
-    const StencilTable stencils = BuildButterflyStencils(h, j);
+    const StencilTable& stencils = cache->Level(j);
     const uint32_t first_odd = h.NumVertices(j);
     for (uint32_t k = 0; k < stencils.size(); ++k) {
       for (uint32_t i = stencils.offsets[k]; i < stencils.offsets[k + 1]; ++i) {
@@ -522,7 +522,8 @@ size_t MarkMovedNonNormal(const SemiRegularHierarchy& h, const std::vector<uint8
 std::pair<std::vector<VertexKind>, size_t> UntangleFrom(const SemiRegularHierarchy& h, int first,
                                                         const std::vector<uint32_t>& folded,
                                                         const std::vector<VertexKind>& kinds,
-                                                        std::optional<size_t> budget_left, Untangler* u) {
+                                                        std::optional<size_t> budget_left, StencilCache* cache,
+                                                        Untangler* u) {
   std::vector<uint8_t> moved(u->pos.size(), 0);
   const std::vector<uint8_t> movable = MovableFrom(h.NumVertices(first), kinds);
   NormalBudget budget(budget_left);
@@ -539,7 +540,7 @@ std::pair<std::vector<VertexKind>, size_t> UntangleFrom(const SemiRegularHierarc
   }
   MoveSingleVertices(u, folded, movable, &budget, &moved);
   std::vector<VertexKind> out = kinds;
-  const size_t marked = MarkMovedNonNormal(h, moved, &out);
+  const size_t marked = MarkMovedNonNormal(h, moved, cache, &out);
   return {std::move(out), marked};
 }
 
@@ -570,7 +571,7 @@ std::vector<uint32_t> MaybeFolded(const Untangler& u, const std::vector<uint32_t
 
 // The untangling of UntangleFinestLevel without the patch flattening.
 size_t MoveFoldedCorners(const SemiRegularHierarchy& hierarchy, const std::vector<uint32_t>& folded,
-                         std::vector<VertexKind>* kinds, Untangler* u) {
+                         StencilCache* cache, std::vector<VertexKind>* kinds, Untangler* u) {
   const int levels = hierarchy.levels();
   std::vector<Vec3>* positions = &u->pos;
   // Every level may move, as deep as the normal share allows (a coarse vertex's
@@ -581,19 +582,19 @@ size_t MoveFoldedCorners(const SemiRegularHierarchy& hierarchy, const std::vecto
   const int last_two = std::max(0, levels - 2);
   if (NormalFraction(hierarchy, *kinds) < kMinNormalShare) {
     // A remesh already below the floor (dragon_vrip's): the last two levels, freely.
-    auto [trial, marked] = UntangleFrom(hierarchy, last_two, folded, *kinds, std::nullopt, u);
+    auto [trial, marked] = UntangleFrom(hierarchy, last_two, folded, *kinds, std::nullopt, cache, u);
     *kinds = std::move(trial);
     return marked;
   }
   for (int first = 0; first < levels - 1; ++first) {
-    auto [trial, marked] = UntangleFrom(hierarchy, first, folded, *kinds, std::nullopt, u);
+    auto [trial, marked] = UntangleFrom(hierarchy, first, folded, *kinds, std::nullopt, cache, u);
     if (NormalFraction(hierarchy, trial) >= kMinNormalShare) {
       *kinds = std::move(trial);
       return marked;
     }
     *positions = start;
   }
-  auto [trial, marked] = UntangleFrom(hierarchy, levels - 1, folded, *kinds, NormalsAboveFloor(hierarchy, *kinds), u);
+  auto [trial, marked] = UntangleFrom(hierarchy, levels - 1, folded, *kinds, NormalsAboveFloor(hierarchy, *kinds), cache, u);
   *kinds = std::move(trial);
   return marked;
 }
@@ -606,10 +607,11 @@ size_t UntangleFinestLevel(const SemiRegularHierarchy& hierarchy, const InputSur
   if (hierarchy.levels() < 1 || folded.empty()) return 0;
   Untangler u(hierarchy.Faces(hierarchy.levels()), surface, positions, *kinds);
   const std::vector<Vec3> start = *positions;
-  size_t marked = MoveFoldedCorners(hierarchy, folded, kinds, &u);
+  StencilCache stencils(hierarchy);
+  size_t marked = MoveFoldedCorners(hierarchy, folded, &stencils, kinds, &u);
   const std::vector<uint8_t> flattened =
-      FlattenFoldedPatches(hierarchy, surface, *kinds, MaybeFolded(u, folded, start), positions);
-  marked += MarkMovedNonNormal(hierarchy, flattened, kinds);
+      FlattenFoldedPatches(hierarchy, surface, *kinds, MaybeFolded(u, folded, start), &stencils, positions);
+  marked += MarkMovedNonNormal(hierarchy, flattened, &stencils, kinds);
   return marked;
 }
 

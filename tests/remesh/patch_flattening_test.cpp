@@ -37,7 +37,8 @@ TEST(PatchFlattening, RefillsAPlantedFoldAndMovesOnlyRefinedVertices) {
   std::vector<uint32_t> candidates(sr.hierarchy.Faces(levels).size());
   for (uint32_t f = 0; f < candidates.size(); ++f) candidates[f] = f;
   const std::vector<Vec3> before = sr.positions;
-  const std::vector<uint8_t> moved = FlattenFoldedPatches(sr.hierarchy, surface, sr.kinds, candidates, &sr.positions);
+  StencilCache stencils(sr.hierarchy);
+  const std::vector<uint8_t> moved = FlattenFoldedPatches(sr.hierarchy, surface, sr.kinds, candidates, &stencils, &sr.positions);
 
   const testing::FlipCount after = testing::CountFlips(ExtractLevel(sr, levels), sphere);
   EXPECT_EQ(after.flipped + after.degenerate, 0u);

@@ -1,0 +1,33 @@
+// Butterfly stencils of a hierarchy's levels, built on first use and kept.
+//
+// They depend on connectivity only, so every untangling trial, the non-normal
+// marking and the patch refills can share them; the finest refinement's table
+// alone takes a third of a second on a 1.6M-vertex remesh.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "mesh/semi_regular.h"
+#include "wavelet/butterfly.h"
+
+namespace eqmesh {
+
+class StencilCache {
+ public:
+  explicit StencilCache(const SemiRegularHierarchy& hierarchy)
+      : hierarchy_(hierarchy), tables_(static_cast<size_t>(hierarchy.levels())) {}
+
+  // Stencils of refinement j -> j+1 (BuildButterflyStencils).
+  const StencilTable& Level(int j) {
+    std::optional<StencilTable>& t = tables_[static_cast<size_t>(j)];
+    if (!t) t = BuildButterflyStencils(hierarchy_, j);
+    return *t;
+  }
+
+ private:
+  const SemiRegularHierarchy& hierarchy_;
+  std::vector<std::optional<StencilTable>> tables_;
+};
+
+}  // namespace eqmesh
