@@ -7,6 +7,7 @@
 
 #include <Eigen/Geometry>
 
+#include "remesh/face_incidence.h"
 #include "remesh/quality_checks.h"
 
 namespace eqmesh {
@@ -40,19 +41,8 @@ class PatchFlattener {
         pos_(*pos),
         tiny_(DegenerateDoubleArea(*s.mesh)),
         moved_(pos->size(), 0),
-        stencils_(*stencils) {
-    const std::vector<Face>& finest = h_.Faces(h_.levels());
-    offsets_.assign(pos_.size() + 1, 0);
-    for (const Face& t : finest) {
-      for (uint32_t v : t) ++offsets_[v + 1];
-    }
-    for (size_t v = 0; v < pos_.size(); ++v) offsets_[v + 1] += offsets_[v];
-    incident_.resize(offsets_.back());
-    std::vector<uint32_t> fill(offsets_.begin(), offsets_.end() - 1);
-    for (uint32_t f = 0; f < finest.size(); ++f) {
-      for (uint32_t v : finest[f]) incident_[fill[v]++] = f;
-    }
-  }
+        stencils_(*stencils),
+        around_(BuildFaceIncidence(h.Faces(h.levels()), pos->size())) {}
 
   // Rounds over the faces that may fold; a refill changes the faces around its
   // vertices, which the next round looks at again.
@@ -118,7 +108,8 @@ class PatchFlattener {
   std::vector<uint32_t> FacesAround(const std::vector<PatchVertex>& verts) const {
     std::vector<uint32_t> faces;
     for (const PatchVertex& p : verts) {
-      faces.insert(faces.end(), incident_.begin() + offsets_[p.v], incident_.begin() + offsets_[p.v + 1]);
+      faces.insert(faces.end(), around_.faces.begin() + around_.offsets[p.v],
+                   around_.faces.begin() + around_.offsets[p.v + 1]);
     }
     std::sort(faces.begin(), faces.end());
     faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
@@ -192,8 +183,8 @@ class PatchFlattener {
   std::vector<Vec3>& pos_;
   double tiny_;
   std::vector<uint8_t> moved_;
-  std::vector<uint32_t> offsets_, incident_;  // finest vertex -> faces (CSR)
   StencilCache& stencils_;
+  FaceIncidence around_;  // of the finest level
 };
 
 }  // namespace

@@ -4,10 +4,12 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <utility>
 
 #include <Eigen/Geometry>
 
 #include "mesh/mesh_topology.h"
+#include "remesh/face_incidence.h"
 #include "remesh/fan_kernel.h"
 #include "remesh/patch_flattening.h"
 #include "remesh/quality_checks.h"
@@ -83,16 +85,9 @@ struct Untangler {
       return LowerX(e) < LowerX(f) || (LowerX(e) == LowerX(f) && e < f);
     });
     for (const Edge& e : input_boundary) longest_boundary_edge = std::max(longest_boundary_edge, (x[e[1]] - x[e[0]]).norm());
-    offsets.assign(pos.size() + 1, 0);
-    for (const Face& t : faces) {
-      for (uint32_t v : t) ++offsets[v + 1];
-    }
-    for (size_t v = 0; v < pos.size(); ++v) offsets[v + 1] += offsets[v];
-    incident.resize(offsets.back());
-    std::vector<uint32_t> fill(offsets.begin(), offsets.end() - 1);
-    for (uint32_t f = 0; f < faces.size(); ++f) {
-      for (uint32_t v : faces[f]) incident[fill[v]++] = f;
-    }
+    FaceIncidence around = BuildFaceIncidence(faces, pos.size());
+    offsets = std::move(around.offsets);
+    incident = std::move(around.faces);
   }
 
   bool Folded(uint32_t f, double* error) const {
