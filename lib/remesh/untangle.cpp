@@ -547,10 +547,6 @@ size_t NormalsAboveFloor(const SemiRegularHierarchy& h, const std::vector<Vertex
   return c.normal > floor ? c.normal - floor : 0;
 }
 
-}  // namespace
-
-namespace {
-
 // Faces that may still fold: those that folded, and those around a moved vertex.
 std::vector<uint32_t> MaybeFolded(const Untangler& u, const std::vector<uint32_t>& folded,
                                   const std::vector<Vec3>& start) {
@@ -564,7 +560,7 @@ std::vector<uint32_t> MaybeFolded(const Untangler& u, const std::vector<uint32_t
   return faces;
 }
 
-// The untangling of UntangleFinestLevel without the patch flattening.
+// The untangling of UntangleFinestLevel without the patch refills.
 size_t MoveFoldedCorners(const SemiRegularHierarchy& hierarchy, const std::vector<uint32_t>& folded,
                          StencilCache* cache, std::vector<VertexKind>* kinds, Untangler* u) {
   const int levels = hierarchy.levels();
@@ -604,10 +600,20 @@ size_t UntangleFinestLevel(const SemiRegularHierarchy& hierarchy, const InputSur
   const std::vector<Vec3> start = *positions;
   StencilCache stencils(hierarchy);
   size_t marked = MoveFoldedCorners(hierarchy, folded, &stencils, kinds, &u);
-  const std::vector<uint8_t> flattened =
+  // The refills' non-normal vertices may not take the share below the floor
+  // the moves kept: then they are undone as a whole.
+  const std::vector<Vec3> moved_only = *positions;
+  std::vector<VertexKind> refilled_kinds = *kinds;
+  const std::vector<uint8_t> refilled =
       FlattenFoldedPatches(hierarchy, surface, *kinds, MaybeFolded(u, folded, start), &stencils, positions);
-  marked += MarkMovedNonNormal(hierarchy, flattened, &stencils, kinds);
-  return marked;
+  const size_t refill_marked = MarkMovedNonNormal(hierarchy, refilled, &stencils, &refilled_kinds);
+  if (NormalFraction(hierarchy, refilled_kinds) < kMinNormalShare &&
+      NormalFraction(hierarchy, *kinds) >= kMinNormalShare) {
+    *positions = moved_only;
+    return marked;
+  }
+  *kinds = std::move(refilled_kinds);
+  return marked + refill_marked;
 }
 
 }  // namespace eqmesh

@@ -18,7 +18,8 @@
 // moves stopped where the share would reach 0.90. A remesh already below 0.90
 // (dragon_vrip's) gets its last two levels untangled freely. Moves are free in
 // 3D; moved vertices, and every later vertex whose butterfly prediction or frame
-// they enter, become non-normal.
+// they enter, become non-normal. What still folds then gets its coarse patch
+// refilled (patch_flattening.h), unless that takes the normal share below 0.90.
 #pragma once
 
 #include <cstddef>

@@ -29,9 +29,9 @@ constexpr uint64_t kSingleLambdaGoldenGeometryHash = 0x71e7acd35de5e8d0ull;
 // (base collapse cost, chart consistency, 3D refinement, placement repair,
 // finest-level untangling), then for session 6 (untangling of coarser levels,
 // the encoder's per-level lambda), then for session 7 (fan-kernel untangling,
-// widening fold clusters), then for session 8 (coarse-patch refills of the folds
-// the untangler leaves).
-constexpr uint64_t kBlobStreamHash = 0x0bdc9b245725994eull;
+// widening fold clusters). Session 8's coarse-patch refills leave it as it was:
+// on this small sample they would take the normal share below 0.90.
+constexpr uint64_t kBlobStreamHash = 0x5351a633ef64c9c2ull;
 
 // Positions (float32, as every consumer stores them) then indices.
 uint64_t GeometryHash(const Mesh& mesh) {
