@@ -1,4 +1,4 @@
-// Coarse-patch flattening of the folds left after untangling; see patch_flattening.h.
+// Coarse-patch refills of the folds left after untangling; see patch_flattening.h.
 #include "remesh/patch_flattening.h"
 
 #include <algorithm>
@@ -7,7 +7,6 @@
 
 #include <Eigen/Geometry>
 
-#include "remesh/face_incidence.h"
 #include "remesh/quality_checks.h"
 
 namespace eqmesh {
@@ -34,7 +33,7 @@ struct PatchVertex {
 class PatchFlattener {
  public:
   PatchFlattener(const SemiRegularHierarchy& h, const InputSurface& s, const std::vector<VertexKind>& kinds,
-                 StencilCache* stencils, std::vector<Vec3>* pos)
+                 const FaceIncidence& finest_faces, StencilCache* stencils, std::vector<Vec3>* pos)
       : h_(h),
         s_(s),
         kinds_(kinds),
@@ -42,7 +41,7 @@ class PatchFlattener {
         tiny_(DegenerateDoubleArea(*s.mesh)),
         moved_(pos->size(), 0),
         stencils_(*stencils),
-        around_(BuildFaceIncidence(h.Faces(h.levels()), pos->size())) {}
+        around_(finest_faces) {}
 
   // Rounds over the faces that may fold; a refill changes the faces around its
   // vertices, which the next round looks at again.
@@ -74,11 +73,7 @@ class PatchFlattener {
   // The remesh's fold test (quality_checks.h) on face f of `level`; degenerate counts.
   bool Folded(int level, uint32_t f) const {
     const Face& t = h_.Faces(level)[f];
-    const Vec3& a = pos_[t[0]];
-    const Vec3& b = pos_[t[1]];
-    const Vec3& c = pos_[t[2]];
-    if (!((b - a).cross(c - a).norm() > tiny_)) return true;
-    return FacesAwayFromInput(*s_.bvh, *s_.mesh, a, b, c);
+    return FoldedOrDegenerate(*s_.bvh, *s_.mesh, pos_[t[0]], pos_[t[1]], pos_[t[2]], tiny_);
   }
 
   // Vertices created inside face p of `level` or on its edges, coarse to fine,
@@ -157,8 +152,9 @@ class PatchFlattener {
   bool TryFlatten(int level, uint32_t p, std::vector<PatchVertex>* refilled) {
     if (Folded(level, p)) return false;
     const Face& t = h_.Faces(level)[p];
-    const double reach = kMaxOffSurfaceShare * std::ldexp(1.0, level - h_.levels()) * std::max({(pos_[t[1]] - pos_[t[0]]).norm(), (pos_[t[2]] - pos_[t[1]]).norm(),
-                                                   (pos_[t[0]] - pos_[t[2]]).norm()});
+    const double longest = std::max(
+        {(pos_[t[1]] - pos_[t[0]]).norm(), (pos_[t[2]] - pos_[t[1]]).norm(), (pos_[t[0]] - pos_[t[2]]).norm()});
+    const double reach = kMaxOffSurfaceShare * std::ldexp(longest, level - h_.levels());
     std::vector<PatchVertex> verts;
     if (!PatchVertices(level, p, &verts)) return false;
     const std::vector<uint32_t> around = FacesAround(verts);
@@ -184,16 +180,16 @@ class PatchFlattener {
   double tiny_;
   std::vector<uint8_t> moved_;
   StencilCache& stencils_;
-  FaceIncidence around_;  // of the finest level
+  const FaceIncidence& around_;  // of the finest level
 };
 
 }  // namespace
 
 std::vector<uint8_t> FlattenFoldedPatches(const SemiRegularHierarchy& hierarchy, const InputSurface& surface,
                                           const std::vector<VertexKind>& kinds,
-                                          const std::vector<uint32_t>& candidates, StencilCache* stencils,
-                                          std::vector<Vec3>* positions) {
-  PatchFlattener flattener(hierarchy, surface, kinds, stencils, positions);
+                                          const std::vector<uint32_t>& candidates, const FaceIncidence& finest_faces,
+                                          StencilCache* stencils, std::vector<Vec3>* positions) {
+  PatchFlattener flattener(hierarchy, surface, kinds, finest_faces, stencils, positions);
   flattener.Repair(candidates);
   return flattener.TakeMoved();
 }

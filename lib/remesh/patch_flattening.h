@@ -25,17 +25,19 @@
 #include <vector>
 
 #include "mesh/semi_regular.h"
+#include "remesh/face_incidence.h"
 #include "remesh/piercing.h"
 #include "remesh/stencil_cache.h"
 
 namespace eqmesh {
 
-// `candidates`: finest faces that may fold (the rest are known not to).
+// `candidates`: finest faces that may fold (the rest are known not to);
+// `finest_faces`: the finest level's vertex -> faces incidence.
 // Moves vertices of `positions` (all levels, finest-level numbering) and
 // returns which vertices moved.
 std::vector<uint8_t> FlattenFoldedPatches(const SemiRegularHierarchy& hierarchy, const InputSurface& surface,
                                           const std::vector<VertexKind>& kinds,
-                                          const std::vector<uint32_t>& candidates, StencilCache* stencils,
-                                          std::vector<Vec3>* positions);
+                                          const std::vector<uint32_t>& candidates, const FaceIncidence& finest_faces,
+                                          StencilCache* stencils, std::vector<Vec3>* positions);
 
 }  // namespace eqmesh

@@ -30,6 +30,12 @@ bool FacesAwayFromInput(const TriangleBvh& bvh, const Mesh& input, const Vec3& a
   return m.dot(n) < 0.0;
 }
 
+bool FoldedOrDegenerate(const TriangleBvh& bvh, const Mesh& input, const Vec3& a, const Vec3& b, const Vec3& c,
+                        double degenerate_double_area, double* error) {
+  if (!((b - a).cross(c - a).norm() > degenerate_double_area)) return true;
+  return FacesAwayFromInput(bvh, input, a, b, c, error);
+}
+
 double DegenerateDoubleArea(const Mesh& input) {
   const double diag = BoundingBoxDiagonal(input);
   return 1e-14 * diag * diag;

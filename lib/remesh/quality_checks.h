@@ -32,6 +32,11 @@ class TriangleBvh;
 bool FacesAwayFromInput(const TriangleBvh& bvh, const Mesh& input, const Vec3& a, const Vec3& b, const Vec3& c,
                         double* error = nullptr);
 
+// What the fold repairs remove: a degenerate triangle (twice its area at most
+// `degenerate_double_area`, see DegenerateDoubleArea) or one that faces away.
+bool FoldedOrDegenerate(const TriangleBvh& bvh, const Mesh& input, const Vec3& a, const Vec3& b, const Vec3& c,
+                        double degenerate_double_area, double* error = nullptr);
+
 // The odd, non-boundary vertices of a remesh, and how many of them are normal.
 struct NormalCount {
   size_t normal = 0, counted = 0;

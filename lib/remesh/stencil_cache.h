@@ -1,8 +1,8 @@
 // Butterfly stencils of a hierarchy's levels, built on first use and kept.
 //
 // They depend on connectivity only, so every untangling trial, the non-normal
-// marking and the patch refills can share them; the finest refinement's table
-// alone takes a third of a second on a 1.6M-vertex remesh.
+// marking and the patch refills can share them (igea, 1.6M vertices: the
+// untangling took 1.84 s building them per use, 0.70 s sharing them).
 #pragma once
 
 #include <optional>

@@ -63,7 +63,7 @@ struct Untangler {
   const std::vector<Face>& faces;
   const InputSurface& surface;
   std::vector<Vec3>& pos;
-  std::vector<uint32_t> offsets, incident;  // vertex -> faces (CSR)
+  FaceIncidence incidence;  // vertex -> finest faces
   const std::vector<VertexKind>& kinds;
   std::vector<Edge> input_boundary;  // input edges with one face, by LowerX
   double longest_boundary_edge = 0.0;
@@ -85,20 +85,15 @@ struct Untangler {
       return LowerX(e) < LowerX(f) || (LowerX(e) == LowerX(f) && e < f);
     });
     for (const Edge& e : input_boundary) longest_boundary_edge = std::max(longest_boundary_edge, (x[e[1]] - x[e[0]]).norm());
-    FaceIncidence around = BuildFaceIncidence(faces, pos.size());
-    offsets = std::move(around.offsets);
-    incident = std::move(around.faces);
+    incidence = BuildFaceIncidence(faces, pos.size());
   }
 
   bool Folded(uint32_t f, double* error) const {
     if (work_left > 0) --work_left;
     const Face& t = faces[f];
-    const Vec3& a = pos[t[0]];
-    const Vec3& b = pos[t[1]];
-    const Vec3& c = pos[t[2]];
     // A degenerate face is as bad as a folded one (the bench counts both).
-    if (!((b - a).cross(c - a).norm() > degenerate_double_area)) return true;
-    return FacesAwayFromInput(*surface.bvh, *surface.mesh, a, b, c, error);
+    return FoldedOrDegenerate(*surface.bvh, *surface.mesh, pos[t[0]], pos[t[1]], pos[t[2]], degenerate_double_area,
+                              error);
   }
 
   // Error allowance of face f for kErrorFloorShare (same units as Folded's).
@@ -113,14 +108,18 @@ struct Untangler {
 
   double FanErrorFloor(uint32_t v) const {
     double floor = 0.0;
-    for (uint32_t n = offsets[v]; n < offsets[v + 1]; ++n) floor += ErrorFloor(incident[n]);
+    for (uint32_t n = incidence.offsets[v]; n < incidence.offsets[v + 1]; ++n) {
+      floor += ErrorFloor(incidence.faces[n]);
+    }
     return floor;
   }
 
   // Folded faces around v, then their error (smaller is better).
   std::pair<size_t, double> Score(uint32_t v) const {
     std::pair<size_t, double> s{0, 0.0};
-    for (uint32_t n = offsets[v]; n < offsets[v + 1]; ++n) s.first += Folded(incident[n], &s.second);
+    for (uint32_t n = incidence.offsets[v]; n < incidence.offsets[v + 1]; ++n) {
+      s.first += Folded(incidence.faces[n], &s.second);
+    }
     return s;
   }
 
@@ -159,8 +158,8 @@ struct Untangler {
     Vec3 sum = Vec3::Zero();
     int count = 0;
     std::vector<uint32_t> seen;
-    for (uint32_t n = offsets[v]; n < offsets[v + 1]; ++n) {
-      for (uint32_t w : faces[incident[n]]) {
+    for (uint32_t n = incidence.offsets[v]; n < incidence.offsets[v + 1]; ++n) {
+      for (uint32_t w : faces[incidence.faces[n]]) {
         if (w == v || (kinds[w] != VertexKind::kBoundary && kinds[w] != VertexKind::kBase)) continue;
         if (std::find(seen.begin(), seen.end(), w) != seen.end()) continue;
         seen.push_back(w);
@@ -175,8 +174,8 @@ struct Untangler {
     if (kinds[v] == VertexKind::kBoundary) return BoundaryNeighbourMidpoint(v);
     Vec3 sum = Vec3::Zero();
     int count = 0;
-    for (uint32_t n = offsets[v]; n < offsets[v + 1]; ++n) {
-      for (uint32_t w : faces[incident[n]]) {
+    for (uint32_t n = incidence.offsets[v]; n < incidence.offsets[v + 1]; ++n) {
+      for (uint32_t w : faces[incidence.faces[n]]) {
         if (w == v) continue;
         sum += pos[w];
         ++count;
@@ -188,8 +187,8 @@ struct Untangler {
   // Farthest neighbour of v: the reach of its moves.
   double FanRadius(uint32_t v) const {
     double r = 0.0;
-    for (uint32_t n = offsets[v]; n < offsets[v + 1]; ++n) {
-      for (uint32_t w : faces[incident[n]]) r = std::max(r, (pos[w] - pos[v]).norm());
+    for (uint32_t n = incidence.offsets[v]; n < incidence.offsets[v + 1]; ++n) {
+      for (uint32_t w : faces[incidence.faces[n]]) r = std::max(r, (pos[w] - pos[v]).norm());
     }
     return r;
   }
@@ -234,8 +233,8 @@ struct Untangler {
   // The point of v's flattened fan farthest from inverting any of its faces.
   std::optional<Vec3> KernelCentre(uint32_t v, const Vec3& facing) const {
     std::vector<std::pair<Vec3, Vec3>> opposite;
-    for (uint32_t n = offsets[v]; n < offsets[v + 1]; ++n) {
-      const Face& t = faces[incident[n]];
+    for (uint32_t n = incidence.offsets[v]; n < incidence.offsets[v + 1]; ++n) {
+      const Face& t = faces[incidence.faces[n]];
       const int c = t[0] == v ? 0 : t[1] == v ? 1 : 2;
       opposite.emplace_back(pos[t[(c + 1) % 3]], pos[t[(c + 2) % 3]]);
     }
@@ -294,8 +293,8 @@ struct Untangler {
     std::vector<uint32_t> seeds;
     for (uint32_t f0 : folded) {
       for (uint32_t v0 : faces[f0]) {
-        for (uint32_t n = offsets[v0]; n < offsets[v0 + 1]; ++n) {
-          const uint32_t f = incident[n];
+        for (uint32_t n = incidence.offsets[v0]; n < incidence.offsets[v0 + 1]; ++n) {
+          const uint32_t f = incidence.faces[n];
           if (!Folded(f, nullptr)) continue;
           for (uint32_t v : faces[f]) {
             if (!in[v]) {
@@ -310,8 +309,8 @@ struct Untangler {
     for (int ring = 0; ring < rings; ++ring) {
       std::vector<uint32_t> next;
       for (uint32_t v : frontier) {
-        for (uint32_t n = offsets[v]; n < offsets[v + 1]; ++n) {
-          for (uint32_t w : faces[incident[n]]) {
+        for (uint32_t n = incidence.offsets[v]; n < incidence.offsets[v + 1]; ++n) {
+          for (uint32_t w : faces[incidence.faces[n]]) {
             if (in[w]) continue;
             in[w] = 1;
             next.push_back(w);
@@ -331,8 +330,8 @@ struct Untangler {
       while (!stack.empty()) {
         const uint32_t v = stack.back();
         stack.pop_back();
-        for (uint32_t n = offsets[v]; n < offsets[v + 1]; ++n) {
-          for (uint32_t w : faces[incident[n]]) {
+        for (uint32_t n = incidence.offsets[v]; n < incidence.offsets[v + 1]; ++n) {
+          for (uint32_t w : faces[incidence.faces[n]]) {
             if (!in[w] || done[w] || !movable[w]) continue;
             done[w] = 1;
             cluster.push_back(w);
@@ -349,7 +348,9 @@ struct Untangler {
   std::vector<uint32_t> FacesAround(const std::vector<uint32_t>& cluster) const {
     std::vector<uint32_t> around;
     for (uint32_t v : cluster) {
-      for (uint32_t n = offsets[v]; n < offsets[v + 1]; ++n) around.push_back(incident[n]);
+      for (uint32_t n = incidence.offsets[v]; n < incidence.offsets[v + 1]; ++n) {
+        around.push_back(incidence.faces[n]);
+      }
     }
     std::sort(around.begin(), around.end());
     around.erase(std::unique(around.begin(), around.end()), around.end());
@@ -464,8 +465,8 @@ void MoveSingleVertices(Untangler* u, const std::vector<uint32_t>& folded, const
       changed = true;
       (*moved)[v] = 1;
       // Its neighbours' faces changed: they may now improve too.
-      for (uint32_t n = u->offsets[v]; n < u->offsets[v + 1]; ++n) {
-        for (uint32_t w : u->faces[u->incident[n]]) suspect[w] = 1;
+      for (uint32_t n = u->incidence.offsets[v]; n < u->incidence.offsets[v + 1]; ++n) {
+        for (uint32_t w : u->faces[u->incidence.faces[n]]) suspect[w] = 1;
       }
     }
     if (!changed) break;
@@ -553,7 +554,8 @@ std::vector<uint32_t> MaybeFolded(const Untangler& u, const std::vector<uint32_t
   std::vector<uint32_t> faces = folded;
   for (uint32_t v = 0; v < u.pos.size(); ++v) {
     if (u.pos[v] == start[v]) continue;
-    faces.insert(faces.end(), u.incident.begin() + u.offsets[v], u.incident.begin() + u.offsets[v + 1]);
+    const auto& around = u.incidence;
+    faces.insert(faces.end(), around.faces.begin() + around.offsets[v], around.faces.begin() + around.offsets[v + 1]);
   }
   std::sort(faces.begin(), faces.end());
   faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
@@ -561,15 +563,16 @@ std::vector<uint32_t> MaybeFolded(const Untangler& u, const std::vector<uint32_t
 }
 
 // The untangling of UntangleFinestLevel without the patch refills.
+// `start`: the positions as the remesh came, which every trial starts from.
 size_t MoveFoldedCorners(const SemiRegularHierarchy& hierarchy, const std::vector<uint32_t>& folded,
-                         StencilCache* cache, std::vector<VertexKind>* kinds, Untangler* u) {
+                         const std::vector<Vec3>& start, StencilCache* cache, std::vector<VertexKind>* kinds,
+                         Untangler* u) {
   const int levels = hierarchy.levels();
   std::vector<Vec3>* positions = &u->pos;
   // Every level may move, as deep as the normal share allows (a coarse vertex's
   // move makes every later vertex predicted from it non-normal). The finest
   // level alone comes last, with a budget: its moves enter no stencil, so each
   // costs one normal vertex, and they stop where the share would reach the floor.
-  const std::vector<Vec3> start = *positions;
   const int last_two = std::max(0, levels - 2);
   if (NormalFraction(hierarchy, *kinds) < kMinNormalShare) {
     // A remesh already below the floor (dragon_vrip's): the last two levels, freely.
@@ -585,7 +588,8 @@ size_t MoveFoldedCorners(const SemiRegularHierarchy& hierarchy, const std::vecto
     }
     *positions = start;
   }
-  auto [trial, marked] = UntangleFrom(hierarchy, levels - 1, folded, *kinds, NormalsAboveFloor(hierarchy, *kinds), cache, u);
+  const size_t budget = NormalsAboveFloor(hierarchy, *kinds);
+  auto [trial, marked] = UntangleFrom(hierarchy, levels - 1, folded, *kinds, budget, cache, u);
   *kinds = std::move(trial);
   return marked;
 }
@@ -599,13 +603,13 @@ size_t UntangleFinestLevel(const SemiRegularHierarchy& hierarchy, const InputSur
   Untangler u(hierarchy.Faces(hierarchy.levels()), surface, positions, *kinds);
   const std::vector<Vec3> start = *positions;
   StencilCache stencils(hierarchy);
-  size_t marked = MoveFoldedCorners(hierarchy, folded, &stencils, kinds, &u);
+  size_t marked = MoveFoldedCorners(hierarchy, folded, start, &stencils, kinds, &u);
   // The refills' non-normal vertices may not take the share below the floor
   // the moves kept: then they are undone as a whole.
   const std::vector<Vec3> moved_only = *positions;
   std::vector<VertexKind> refilled_kinds = *kinds;
-  const std::vector<uint8_t> refilled =
-      FlattenFoldedPatches(hierarchy, surface, *kinds, MaybeFolded(u, folded, start), &stencils, positions);
+  const std::vector<uint8_t> refilled = FlattenFoldedPatches(hierarchy, surface, *kinds, MaybeFolded(u, folded, start),
+                                                             u.incidence, &stencils, positions);
   const size_t refill_marked = MarkMovedNonNormal(hierarchy, refilled, &stencils, &refilled_kinds);
   if (NormalFraction(hierarchy, refilled_kinds) < kMinNormalShare &&
       NormalFraction(hierarchy, *kinds) >= kMinNormalShare) {

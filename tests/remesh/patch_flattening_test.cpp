@@ -38,7 +38,9 @@ TEST(PatchFlattening, RefillsAPlantedFoldAndMovesOnlyRefinedVertices) {
   for (uint32_t f = 0; f < candidates.size(); ++f) candidates[f] = f;
   const std::vector<Vec3> before = sr.positions;
   StencilCache stencils(sr.hierarchy);
-  const std::vector<uint8_t> moved = FlattenFoldedPatches(sr.hierarchy, surface, sr.kinds, candidates, &stencils, &sr.positions);
+  const FaceIncidence finest_faces = BuildFaceIncidence(sr.hierarchy.Faces(levels), sr.positions.size());
+  const std::vector<uint8_t> moved =
+      FlattenFoldedPatches(sr.hierarchy, surface, sr.kinds, candidates, finest_faces, &stencils, &sr.positions);
 
   const testing::FlipCount after = testing::CountFlips(ExtractLevel(sr, levels), sphere);
   EXPECT_EQ(after.flipped + after.degenerate, 0u);
