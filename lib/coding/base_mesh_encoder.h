@@ -10,8 +10,9 @@
 // with R in bits (the whole Draco chunk), x^ the Draco-decoded value and w_i the
 // influence of base vertex i: the squared-norm energy, at the finest level, of the
 // subdivision basis function of vertex i (BaseInfluenceWeights). That is the error
-// a base displacement leaves when no finer detail corrects it: exact at low rates,
-// an overestimate at high rates where closed-loop details absorb part of it.
+// a base displacement leaves when no finer detail corrects it. The closed loop
+// corrects part of it (each level's details are measured against the decoded base),
+// so J weighs it by kBaseUncorrectedShare = 1/4 (measured, base_mesh_encoder.cpp).
 // lambda_world is the level coder's lambda expressed per squared world unit.
 //
 // Draco reorders vertices and faces (edgebreaker traversal). The encoder decodes

@@ -57,6 +57,7 @@ const std::vector<Sample>& Samples() {
     s.push_back({"golden_v1_1", testing::ReadBytes(data + "golden_v1_1.eqm")});
     s.push_back({"golden_v1_0", testing::ReadBytes(data + "golden_v1_0.eqm")});
     s.push_back({"golden_v1_1_single_lambda", testing::ReadBytes(data + "golden_v1_1_single_lambda.eqm")});
+    s.push_back({"golden_v1_1_full_base_weight", testing::ReadBytes(data + "golden_v1_1_full_base_weight.eqm")});
     return s;
   }();
   return samples;
