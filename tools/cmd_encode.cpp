@@ -35,6 +35,7 @@ struct EncodeArgs {
   int threads = 0;
   bool strict = false;
   bool repair = false, measure = false, json = false, fallback = false;
+  bool draco_base = false;
 };
 
 // What the encoder starts from: a semi-regular mesh (remeshed here, or read
@@ -62,6 +63,7 @@ EncodeOptions ToEncodeOptions(const EncodeArgs& a) {
   o.target_psnr = a.psnr;
   o.tangential_factor = a.tangential_factor;
   o.measure_psnr = a.measure;
+  o.draco_base = a.draco_base;
   return o;
 }
 
@@ -88,6 +90,7 @@ nlohmann::json ToJson(const EncodeArgs& a, const RemeshReport& remesh, const Enc
   j["base_bits"] = r.base_bits;
   j["header_bytes"] = r.header_bytes;
   j["base_bytes"] = r.base_bytes;
+  j["base_coder"] = r.base_compact ? "compact" : "draco";
   j["kept_bytes"] = r.kept_bytes;
   j["level_bytes"] = r.level_bytes;
   j["rate_evaluations"] = r.rate_evaluations;
@@ -219,6 +222,9 @@ int RunEncode(int argc, char** argv) {
   app.add_option("--base-vertices", a.base_vertices, "base mesh size to aim for (-1: automatic)")
       ->check(CLI::Range(-1, 1 << 30));
   app.add_flag("--repair", a.repair, "repair non-manifold / misoriented input instead of refusing it");
+  app.add_flag("--draco-base", a.draco_base,
+               "code the base mesh with Draco instead of the compact base chunk (streams that "
+               "version 1.1 decoders read; larger)");
   app.add_flag("--measure", a.measure, "decode the stream and report its PSNR against the input");
   app.add_option("--original", a.original_path,
                  ".srm input: the mesh it was remeshed from (PSNR reference and bpv denominator)");

@@ -19,6 +19,7 @@
 
 #include "coding/base_mesh_decoder.h"
 #include "coding/bitstream_shared.h"
+#include "coding/compact_base/compact_base_encoder.h"
 
 namespace eqmesh {
 namespace {
@@ -212,11 +213,11 @@ double QuantizationTolerance(const Mesh& mesh, int bits) {
   return 2.0 * extent / (std::ldexp(1.0, bits) - 1.0) + 1e-6 * (extent + 1.0);
 }
 
-StatusOr<DracoMeshEncoding> EncodeWithMethod(const Mesh& mesh, int bits, int method,
+StatusOr<MeshChunkEncoding> EncodeWithMethod(const Mesh& mesh, int bits, int method,
                                              bool need_map) {
   const uint32_t n = static_cast<uint32_t>(mesh.positions.size());
   const DracoMeshLimits limits{n, mesh.faces.size()};
-  DracoMeshEncoding out;
+  MeshChunkEncoding out;
   out.bits = bits;
   EQMESH_ASSIGN_OR_RETURN(out.bytes, RunDraco(*ToDracoMesh(mesh), bits, method));
   EQMESH_ASSIGN_OR_RETURN(out.decoded, DecodeDracoMesh(out.bytes.data(), out.bytes.size(), limits,
@@ -230,7 +231,7 @@ StatusOr<DracoMeshEncoding> EncodeWithMethod(const Mesh& mesh, int bits, int met
   return out;
 }
 
-double WeightedError(const Mesh& input, const DracoMeshEncoding& enc,
+double WeightedError(const Mesh& input, const MeshChunkEncoding& enc,
                      const std::vector<double>& weights) {
   double d = 0.0;
   for (size_t i = 0; i < enc.decoded_to_input.size(); ++i) {
@@ -240,15 +241,26 @@ double WeightedError(const Mesh& input, const DracoMeshEncoding& enc,
   return d;
 }
 
+StatusOr<MeshChunkEncoding> EncodeCompactCandidate(const Mesh& base, int bits) {
+  EQMESH_ASSIGN_OR_RETURN(CompactBaseEncoding c, EncodeCompactBase(base, bits));
+  MeshChunkEncoding out;
+  out.bytes = std::move(c.bytes);
+  out.decoded = std::move(c.decoded);
+  out.decoded_to_input = std::move(c.decoded_to_input);
+  out.bits = bits;
+  out.compact = true;
+  return out;
+}
+
 }  // namespace
 
-StatusOr<DracoMeshEncoding> EncodeMeshWithDraco(const Mesh& mesh, int bits, bool need_map) {
+StatusOr<MeshChunkEncoding> EncodeMeshWithDraco(const Mesh& mesh, int bits, bool need_map) {
   if (mesh.positions.empty() || mesh.faces.empty()) {
     return InvalidArgument("Draco mesh chunk needs at least one face");
   }
   try {
     Status last = InternalError("no Draco method tried");
-    std::optional<DracoMeshEncoding> best;
+    std::optional<MeshChunkEncoding> best;
     for (const int method : kDracoMethods) {
       auto enc = EncodeWithMethod(mesh, bits, method, need_map);
       if (!enc.ok()) {
@@ -264,14 +276,15 @@ StatusOr<DracoMeshEncoding> EncodeMeshWithDraco(const Mesh& mesh, int bits, bool
   }
 }
 
-StatusOr<std::vector<DracoMeshEncoding>> EncodeBaseCandidates(const Mesh& base) {
+StatusOr<std::vector<MeshChunkEncoding>> EncodeBaseCandidates(const Mesh& base, bool draco_only) {
   // A coarse depth can merge base vertices that lie closer than its step (scans
   // with near-duplicate points): such a depth cannot be matched back to the
   // input and is skipped; the finer ones always can.
-  std::vector<DracoMeshEncoding> candidates;
+  std::vector<MeshChunkEncoding> candidates;
   Status last = Status::Ok();
   for (int bits = bitstream::kBaseMinBits; bits <= bitstream::kBaseMaxBits; ++bits) {
-    StatusOr<DracoMeshEncoding> enc = EncodeMeshWithDraco(base, bits);
+    StatusOr<MeshChunkEncoding> enc = draco_only ? EncodeMeshWithDraco(base, bits) : EncodeCompactCandidate(base, bits);
+    if (!enc.ok() && !draco_only) enc = EncodeMeshWithDraco(base, bits);
     if (enc.ok()) {
       candidates.push_back(std::move(*enc));
     } else {
@@ -282,7 +295,7 @@ StatusOr<std::vector<DracoMeshEncoding>> EncodeBaseCandidates(const Mesh& base) 
   return candidates;
 }
 
-size_t ChooseBaseCandidate(const std::vector<DracoMeshEncoding>& candidates, const Mesh& base,
+size_t ChooseBaseCandidate(const std::vector<MeshChunkEncoding>& candidates, const Mesh& base,
                            const std::vector<double>& weights, double lambda_world,
                            BaseRdReport* report) {
   size_t best = 0;
@@ -300,12 +313,12 @@ size_t ChooseBaseCandidate(const std::vector<DracoMeshEncoding>& candidates, con
   return best;
 }
 
-StatusOr<DracoMeshEncoding> EncodeBaseMesh(const Mesh& base, const std::vector<double>& weights,
+StatusOr<MeshChunkEncoding> EncodeBaseMesh(const Mesh& base, const std::vector<double>& weights,
                                            double lambda_world, BaseRdReport* report) {
   if (weights.size() != base.positions.size()) {
     return InternalError("base influence weights do not match the base vertex count");
   }
-  EQMESH_ASSIGN_OR_RETURN(std::vector<DracoMeshEncoding> candidates, EncodeBaseCandidates(base));
+  EQMESH_ASSIGN_OR_RETURN(std::vector<MeshChunkEncoding> candidates, EncodeBaseCandidates(base));
   const size_t best = ChooseBaseCandidate(candidates, base, weights, lambda_world, report);
   return std::move(candidates[best]);
 }

@@ -33,18 +33,19 @@
 
 namespace eqmesh {
 
-struct DracoMeshEncoding {
-  std::vector<uint8_t> bytes;                // the Draco buffer that goes in the stream
+struct MeshChunkEncoding {
+  std::vector<uint8_t> bytes;                // the chunk that goes in the stream
   Mesh decoded;                              // exactly what DecodeDracoMesh returns for it
   std::vector<uint32_t> decoded_to_input;    // decoded vertex i was input vertex [i]
                                              // (empty when no map was asked for)
-  int bits = 0;                              // Draco position quantization depth
+  int bits = 0;                              // position quantization depth
+  bool compact = false;                      // a compact chunk (stream flag kCompactBase), else Draco
 };
 
 // One Draco encoding at a fixed depth, with the decoded result and (need_map) the
 // vertex map. Picks the smallest of edgebreaker / sequential connectivity that
 // round-trips.
-StatusOr<DracoMeshEncoding> EncodeMeshWithDraco(const Mesh& mesh, int bits, bool need_map = true);
+StatusOr<MeshChunkEncoding> EncodeMeshWithDraco(const Mesh& mesh, int bits, bool need_map = true);
 
 struct BaseRdReport {
   int bits = 0;
@@ -53,16 +54,17 @@ struct BaseRdReport {
 };
 
 // Every depth of [kBaseMinBits, kBaseMaxBits], in order (independent of lambda, so
-// rate control computes them once).
-StatusOr<std::vector<DracoMeshEncoding>> EncodeBaseCandidates(const Mesh& base);
+// rate control computes them once): the compact chunk (compact_base/) where the
+// base is a manifold, consistently oriented mesh, else Draco.
+StatusOr<std::vector<MeshChunkEncoding>> EncodeBaseCandidates(const Mesh& base, bool draco_only = false);
 
 // Index of the candidate minimising J (weights.size() == base.num_vertices()).
-size_t ChooseBaseCandidate(const std::vector<DracoMeshEncoding>& candidates, const Mesh& base,
+size_t ChooseBaseCandidate(const std::vector<MeshChunkEncoding>& candidates, const Mesh& base,
                            const std::vector<double>& weights, double lambda_world,
                            BaseRdReport* report);
 
 // Both steps at once.
-StatusOr<DracoMeshEncoding> EncodeBaseMesh(const Mesh& base, const std::vector<double>& weights,
+StatusOr<MeshChunkEncoding> EncodeBaseMesh(const Mesh& base, const std::vector<double>& weights,
                                            double lambda_world, BaseRdReport* report = nullptr);
 
 }  // namespace eqmesh

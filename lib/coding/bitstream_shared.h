@@ -2,7 +2,7 @@
 // pattern). The values are part of the format: NEVER renumber or reuse one; add new
 // values at the end and bump kVersionMinor (compatible addition) or kVersionMajor.
 //
-// Stream layout, version 1.1 (all multi-byte integers little endian; "varint" is
+// Stream layout, version 1.2 (all multi-byte integers little endian; "varint" is
 // unsigned LEB128, "svarint" zig-zag LEB128; ext_spec/ restates this normatively):
 //
 //   magic            4 bytes  "EQMS"
@@ -20,10 +20,11 @@
 //   kept_size        varint   only with kHasKeptExactly: bytes of the kept chunk (> 0)
 //   level_size[J]    varint   bytes of level chunk j = 0..J-1 (refinement j -> j+1)
 //   -- end of header; chunks follow back to back, no padding, nothing after --
-//   base chunk       Draco mesh buffer: the base connectivity and the level-0
-//                    scaling values (positions for unlifted, lifted scaling values
-//                    for lifted), quantized by Draco to the depth the encoder chose.
-//                    Its vertex order defines base vertex numbering.
+//   base chunk       the base connectivity and the level-0 scaling values
+//                    (positions for unlifted, lifted scaling values for lifted),
+//                    quantized to the depth the encoder chose: with kCompactBase
+//                    (since 1.2) a compact chunk (coding/compact_base/), else a
+//                    Draco mesh buffer. Its vertex order defines base vertex numbering.
 //   kept chunk       Draco mesh buffer of SemiRegularMesh::kept_exactly.
 //   level chunks     opaque to the container; for kCoderEq one EqLevel chunk each
 //                    (lib/coding/eq), decoded against the hierarchy level layout;
@@ -41,7 +42,7 @@ namespace eqmesh::bitstream {
 
 constexpr uint8_t kMagic[4] = {'E', 'Q', 'M', 'S'};
 constexpr uint8_t kVersionMajor = 1;
-constexpr uint8_t kVersionMinor = 1;  // 1.1: coder 1 (zerotree) defined
+constexpr uint8_t kVersionMinor = 2;  // 1.1: coder 1 (zerotree); 1.2: kCompactBase
 
 // Wavelet transform the level chunks are expressed in. Pinned values.
 enum class TransformId : uint8_t {
@@ -60,8 +61,9 @@ constexpr uint8_t kMaxCoderId = 2;
 // Bits of the header's flags byte. Pinned values.
 enum HeaderFlag : uint8_t {
   kHasKeptExactly = 1u << 0,  // a kept-exactly chunk follows the base chunk
+  kCompactBase = 1u << 1,     // the base chunk is a compact chunk, not Draco (1.2)
 };
-constexpr uint8_t kKnownFlags = kHasKeptExactly;
+constexpr uint8_t kKnownFlags = kHasKeptExactly | kCompactBase;
 
 // lambda and the tangential factor travel as log2 codes in 1/kLogCodeScale steps;
 // the encoder codes with the value the decoder will rebuild from the code.
@@ -75,8 +77,9 @@ constexpr uint64_t kMaxChunkBytes = uint64_t{1} << 32;
 constexpr uint32_t kMaxBaseVertices = 1u << 20;
 constexpr uint64_t kMaxFinestFaces = uint64_t{1} << 24;
 
-// Draco settings of the base and kept chunks (encoder side, listed here because the
-// kept chunk precision is a format promise: "kept exactly" to this many bits).
+// Depths of the base chunk the encoder tries, and the Draco depth of the kept chunk
+// (listed here because its precision is a format promise: "kept exactly" to this
+// many bits).
 constexpr int kBaseMinBits = 8;
 constexpr int kBaseMaxBits = 20;
 constexpr int kKeptBits = 20;

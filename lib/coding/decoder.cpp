@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "coding/base_mesh_decoder.h"
+#include "coding/compact_base/compact_base_decoder.h"
 #include "coding/level_codec.h"
 #include "coding/level_synthesis.h"
 #include "coding/stream_header.h"
@@ -23,6 +24,7 @@ StreamInfo MakeStreamInfo(const StreamHeader& h, size_t header_size) {
   s.tangential_factor = h.tangential_factor();
   s.quantum = h.quantum;
   s.has_kept_exactly = h.has_kept();
+  s.has_compact_base = h.has_compact_base();
   s.header_size = header_size;
   s.base_offset = header_size;
   s.base_size = h.base_size;
@@ -65,6 +67,10 @@ Status CheckLength(const StreamInfo& s, size_t size, const DecodeOptions& option
 }
 
 StatusOr<Mesh> DecodeBase(const uint8_t* data, const StreamInfo& s) {
+  if (s.has_compact_base) {
+    return DecodeCompactBase(data + s.base_offset, static_cast<size_t>(s.base_size), bitstream::kMaxBaseVertices,
+                             "eqm base mesh chunk");
+  }
   const DracoMeshLimits limits{bitstream::kMaxBaseVertices, bitstream::kMaxFinestFaces};
   return DecodeDracoMesh(data + s.base_offset, static_cast<size_t>(s.base_size), limits, "eqm base mesh chunk");
 }

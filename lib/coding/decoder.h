@@ -55,6 +55,7 @@ struct StreamInfo {
   double tangential_factor = 0;
   double quantum = 0;
   bool has_kept_exactly = false;
+  bool has_compact_base = false;  // base chunk is a compact chunk (1.2), not Draco
   uint64_t header_size = 0;
   uint64_t base_offset = 0, base_size = 0;
   uint64_t kept_offset = 0, kept_size = 0;  // size 0 when absent

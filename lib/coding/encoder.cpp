@@ -41,7 +41,7 @@ struct Prepared {
   float quantum = 1.0f;
   std::vector<double> base_weights;
   Mesh base;                       // level-0 values to code (input numbering)
-  std::vector<DracoMeshEncoding> base_candidates;  // one per depth
+  std::vector<MeshChunkEncoding> base_candidates;  // one per depth
   std::vector<uint8_t> kept_bytes;
 };
 
@@ -55,7 +55,7 @@ struct Renumbered {
 
 StatusOr<const Renumbered*> RenumberCached(const SemiRegularMesh& mesh,
                                            bitstream::TransformId transform,
-                                           const DracoMeshEncoding& base,
+                                           const MeshChunkEncoding& base,
                                            std::deque<Renumbered>* cache) {
   for (const Renumbered& r : *cache) {
     if (r.decoded_to_input == base.decoded_to_input && r.faces == base.decoded.faces) return &r;
@@ -117,7 +117,7 @@ double PositionsDiagonal(const std::vector<Vec3>& positions) {
   return (hi - lo).norm();
 }
 
-StatusOr<Prepared> Prepare(const SemiRegularMesh& mesh, bitstream::TransformId transform) {
+StatusOr<Prepared> Prepare(const SemiRegularMesh& mesh, bitstream::TransformId transform, bool draco_base) {
   Prepared p;
   p.mesh = &mesh;
   std::vector<Vec3> all = mesh.positions;
@@ -135,9 +135,9 @@ StatusOr<Prepared> Prepare(const SemiRegularMesh& mesh, bitstream::TransformId t
   } else {
     p.base.positions = AnalyzeAllLevels(mesh.hierarchy, mesh.positions, transform).values[0];
   }
-  EQMESH_ASSIGN_OR_RETURN(p.base_candidates, EncodeBaseCandidates(p.base));
+  EQMESH_ASSIGN_OR_RETURN(p.base_candidates, EncodeBaseCandidates(p.base, draco_base));
   if (!mesh.kept_exactly.faces.empty()) {
-    EQMESH_ASSIGN_OR_RETURN(DracoMeshEncoding kept,
+    EQMESH_ASSIGN_OR_RETURN(MeshChunkEncoding kept,
                             EncodeMeshWithDraco(mesh.kept_exactly, bitstream::kKeptBits, false));
     p.kept_bytes = std::move(kept.bytes);
   }
@@ -183,22 +183,24 @@ StreamHeader MakeHeader(const Prepared& prep, const EncodeOptions& options, int6
 }
 
 // The base candidate of least R + lambda D at the header's lambda.
-const DracoMeshEncoding& ChooseBase(const Prepared& prep, const StreamHeader& header, BaseRdReport* report) {
+const MeshChunkEncoding& ChooseBase(const Prepared& prep, const StreamHeader& header, BaseRdReport* report) {
   const double quantum = static_cast<double>(header.quantum);
   const double lambda_world = header.lambda() / (quantum * quantum);
   return prep.base_candidates[ChooseBaseCandidate(prep.base_candidates, prep.base, prep.base_weights,
                                                   lambda_world, report)];
 }
 
-Pass FinishPass(const StreamHeader& header, const Prepared& prep, const std::vector<uint8_t>& base,
+Pass FinishPass(StreamHeader header, const Prepared& prep, const MeshChunkEncoding& base,
                 const std::vector<std::vector<uint8_t>>& chunks, const BaseRdReport& base_report,
                 const EncodeOptions& options) {
   Pass pass;
-  pass.bytes = Assemble(header, base, prep.kept_bytes, chunks, &pass.report);
+  if (base.compact) header.flags |= bitstream::kCompactBase;
+  pass.bytes = Assemble(header, base.bytes, prep.kept_bytes, chunks, &pass.report);
   pass.report.lambda = header.lambda();
   pass.report.tangential_factor = header.tangential_factor();
   pass.report.lambda_code = static_cast<int>(header.lambda_code);
   pass.report.base_bits = base_report.bits;
+  pass.report.base_compact = base.compact;
   if (options.input_vertices > 0) {
     pass.report.bpv = 8.0 * static_cast<double>(pass.bytes.size()) /
                       static_cast<double>(options.input_vertices);
@@ -212,7 +214,7 @@ StatusOr<Pass> EncodeAtCode(const Prepared& prep, const EncodeOptions& options, 
   const LevelCodingParams params{options.coder, code, header.lambda(), header.tangential_factor(),
                                  static_cast<double>(header.quantum)};
   BaseRdReport base_report;
-  const DracoMeshEncoding& base = ChooseBase(prep, header, &base_report);
+  const MeshChunkEncoding& base = ChooseBase(prep, header, &base_report);
   EQMESH_ASSIGN_OR_RETURN(const Renumbered* target,
                           RenumberCached(*prep.mesh, options.transform, base, cache));
   const SemiRegularHierarchy& h = target->mesh.hierarchy;
@@ -225,7 +227,7 @@ StatusOr<Pass> EncodeAtCode(const Prepared& prep, const EncodeOptions& options, 
                                                 base.decoded.positions, coder, options.progress,
                                                 &chunks)
                              .status());
-  return FinishPass(header, prep, base.bytes, chunks, base_report, options);
+  return FinishPass(header, prep, base, chunks, base_report, options);
 }
 
 // Zerotree payload bytes that keep the whole stream within total_budget (never
@@ -251,7 +253,7 @@ StatusOr<Pass> EncodeZerotreeAtCode(const Prepared& prep, const EncodeOptions& o
                                     int* last_plane) {
   const StreamHeader header = MakeHeader(prep, options, code);
   BaseRdReport base_report;
-  const DracoMeshEncoding& base = ChooseBase(prep, header, &base_report);
+  const MeshChunkEncoding& base = ChooseBase(prep, header, &base_report);
   EQMESH_ASSIGN_OR_RETURN(const Renumbered* target,
                           RenumberCached(*prep.mesh, options.transform, base, cache));
   const SemiRegularHierarchy& h = target->mesh.hierarchy;
@@ -273,7 +275,7 @@ StatusOr<Pass> EncodeZerotreeAtCode(const Prepared& prep, const EncodeOptions& o
     EQMESH_ASSIGN_OR_RETURN(chunks[0], EncodeZerotree(h, coeffs, zo, &zr));
     *last_plane = zr.last_plane;
   }
-  return FinishPass(header, prep, base.bytes, chunks, base_report, options);
+  return FinishPass(header, prep, base, chunks, base_report, options);
 }
 
 // A byte budget cut exactly (embedded stream): a first pass at the start lambda
@@ -501,7 +503,7 @@ StatusOr<std::vector<uint8_t>> Encode(const SemiRegularMesh& mesh, const EncodeO
   EncodeOptions options = requested;
   if (options.tangential_factor == 0) options.tangential_factor = DefaultTangentialFactor(options.transform);
   EQMESH_RETURN_IF_ERROR(Validate(mesh, options));
-  EQMESH_ASSIGN_OR_RETURN(Prepared prep, Prepare(mesh, options.transform));
+  EQMESH_ASSIGN_OR_RETURN(Prepared prep, Prepare(mesh, options.transform, options.draco_base));
   std::deque<Renumbered> cache;
   Pass pass;
   const bool zerotree = options.coder == bitstream::CoderId::kZerotree;

@@ -26,6 +26,7 @@ struct StreamHeader {
   std::vector<uint64_t> level_sizes;
 
   bool has_kept() const { return (flags & bitstream::kHasKeptExactly) != 0; }
+  bool has_compact_base() const { return (flags & bitstream::kCompactBase) != 0; }
   double lambda() const;
   double tangential_factor() const;
 };

@@ -159,14 +159,18 @@ TEST(RateControl, PsnrTargetIsMetAndTheReportedPsnrIsReproducible) {
   auto distance = CompareSurfaces(original, *decoded);
   ASSERT_TRUE(distance.ok());
   EXPECT_DOUBLE_EQ(distance->psnr_db, report.psnr_db);
-  // The next smaller lambda code must miss the target (smallest stream that meets it).
+  // The next smaller lambda code must miss the target (with the search's 0.05 dB
+  // margin, kSearchMarginDb in encoder.cpp) or give no smaller stream: the smallest
+  // stream that meets it.
   EncodeOptions smaller;
   smaller.lambda = report.lambda * std::exp2(-1.0 / bitstream::kLogCodeScale);
   smaller.original = &original;
   smaller.measure_psnr = true;
   EncodeReport smaller_report;
   ASSERT_TRUE(Encode(mesh, smaller, &smaller_report).ok());
-  EXPECT_LT(smaller_report.psnr_db, 55.0);
+  EXPECT_TRUE(smaller_report.psnr_db < 55.05 || smaller_report.total_bytes >= report.total_bytes)
+      << smaller_report.psnr_db << " dB in " << smaller_report.total_bytes << " bytes against "
+      << report.total_bytes;
 }
 
 // The golden stream pins the format: re-encoding must reproduce it byte for byte,
@@ -199,7 +203,7 @@ TEST(Golden, Version10StreamStillDecodes) {
   const std::vector<uint8_t> current = testing::ReadBytes(data + "golden_v1_1_single_lambda.eqm");
   ASSERT_EQ(old.size(), current.size());
   EXPECT_EQ(old[5], 0);
-  old[5] = bitstream::kVersionMinor;
+  old[5] = 1;
   EXPECT_EQ(old, current);
   auto decoded = Decode(old.data(), old.size());
   EXPECT_TRUE(decoded.ok()) << decoded.status().ToString();

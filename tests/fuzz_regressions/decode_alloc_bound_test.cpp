@@ -111,8 +111,9 @@ Probe Measure(const std::vector<uint8_t>& stream) {
   return probe;
 }
 
-std::vector<uint8_t> EncodeSample(CoderId coder, TransformId transform, bool kept) {
+std::vector<uint8_t> EncodeSample(CoderId coder, TransformId transform, bool kept, bool draco_base = false) {
   EncodeOptions options;
+  options.draco_base = draco_base;
   options.lambda = 0.05;
   options.coder = coder;
   options.transform = transform;
@@ -130,8 +131,14 @@ const std::vector<Sample>& Samples() {
       {"eq_lifted", EncodeSample(CoderId::kEq, TransformId::kLifted, false)},
       {"zerotree", EncodeSample(CoderId::kZerotree, TransformId::kUnlifted, true)},
       {"uniform", EncodeSample(CoderId::kUniform, TransformId::kUnlifted, true)},
+      {"eq_draco", EncodeSample(CoderId::kEq, TransformId::kUnlifted, true, true)},
+      {"zt_draco", EncodeSample(CoderId::kZerotree, TransformId::kLifted, false, true)},
   };
   return samples;
+}
+
+bool HasDracoBase(const Sample& s) {
+  return !ReadStreamInfo(s.bytes.data(), s.bytes.size()).value().has_compact_base;
 }
 
 // Rewrites the header (levels, chunk sizes) keeping the chunk bytes as given.
@@ -227,6 +234,7 @@ TEST(DecodeAllocBound, HeaderClaimingHugeChunks) {
 // header adjusted), so every count Draco reads can claim billions.
 TEST(DecodeAllocBound, DracoChunksClaimingHugeCounts) {
   for (const Sample& s : Samples()) {
+    if (!HasDracoBase(s)) continue;
     size_t worst = 0;
     const Parsed p = Parse(s.bytes);
     const size_t kept_begin = p.header.base_size;
@@ -284,6 +292,7 @@ std::vector<uint8_t> WithDracoCounts(const Parsed& p, uint64_t faces) {
 // bound, larger ones are refused before Draco runs.
 TEST(DecodeAllocBound, DracoHeaderCounts) {
   for (const Sample& s : Samples()) {
+    if (!HasDracoBase(s)) continue;
     size_t worst = 0;
     const Parsed p = Parse(s.bytes);
     // The rewritten varints make the chunk up to 16 bytes longer: 64 * 16 of margin.

@@ -21,10 +21,12 @@
 namespace eqmesh::testing {
 namespace {
 
-// Re-pinned in session 9: the base chunk's depth is chosen with the closed-loop
-// share of the base weights (base_mesh_encoder.cpp); same format.
-constexpr uint64_t kGoldenStreamHash = 0x6e5147924993ed72ull;
-constexpr uint64_t kGoldenGeometryHash = 0x931214f8584ad36bull;
+// Version 1.2 (session 9): the compact base chunk (coding/compact_base/).
+constexpr uint64_t kGoldenStreamHash = 0xf8765b30a0976003ull;
+constexpr uint64_t kGoldenGeometryHash = 0xc89352b22a77c1e0ull;
+// The version-1.1 golden of session 9 (Draco base chunk, its depth chosen with the
+// closed-loop share of the base weights, base_mesh_encoder.cpp).
+constexpr uint64_t kV11GoldenGeometryHash = 0x931214f8584ad36bull;
 // The golden the encoder wrote from session 6 to 8 (full base weights; same
 // format): a decoder must still give the same mesh for it.
 constexpr uint64_t kFullBaseWeightGoldenGeometryHash = 0x1e3b46a8d3b4d912ull;
@@ -37,7 +39,8 @@ constexpr uint64_t kSingleLambdaGoldenGeometryHash = 0x71e7acd35de5e8d0ull;
 // the encoder's per-level lambda), then for session 7 (fan-kernel untangling,
 // widening fold clusters). Session 8's coarse-patch refills leave it as it was:
 // on this small sample they would take the normal share below 0.90.
-constexpr uint64_t kBlobStreamHash = 0x5351a633ef64c9c2ull;
+// Session 9: the base depth's closed-loop share and the compact base chunk (1.2).
+constexpr uint64_t kBlobStreamHash = 0xaca9375e0aaea606ull;
 
 // Positions (float32, as every consumer stores them) then indices.
 uint64_t GeometryHash(const Mesh& mesh) {
@@ -75,7 +78,8 @@ TEST(Determinism, GoldenStreamAndItsGeometryHaveThePinnedHashes) {
   const std::string data = std::string(EQMESH_SOURCE_DIR) + "/tests/codec/data/";
   const std::pair<const char*, uint64_t> earlier[] = {
       {"golden_v1_1_single_lambda.eqm", kSingleLambdaGoldenGeometryHash},
-      {"golden_v1_1_full_base_weight.eqm", kFullBaseWeightGoldenGeometryHash}};
+      {"golden_v1_1_full_base_weight.eqm", kFullBaseWeightGoldenGeometryHash},
+      {"golden_v1_1.eqm", kV11GoldenGeometryHash}};
   for (const auto& [name, hash] : earlier) {
     const std::vector<uint8_t> old = ReadFileOrEmpty(data + name);
     auto old_mesh = Decode(old.data(), old.size());

@@ -1,0 +1,219 @@
+// Compact base-mesh chunk encoder: see compact_base_encoder.h and compact_base_model.h.
+// It drives the same CompactBaseState as the decoder, choosing what the decoder
+// reads: the seed face of each component (the lowest-numbered face not yet coded)
+// and, per gate, the input face across it.
+#include "coding/compact_base/compact_base_encoder.h"
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <limits>
+
+#include "coding/compact_base/compact_base_model.h"
+#include "coding/entropy/byte_io.h"
+
+namespace eqmesh {
+namespace {
+
+constexpr uint32_t kUnset = std::numeric_limits<uint32_t>::max();
+
+uint64_t EdgeKey(uint32_t u, uint32_t v) {
+  return (uint64_t{std::max(u, v)} << 32) | std::min(u, v);
+}
+
+Status NotCompact(const std::string& why) { return UnsupportedFeature("compact base chunk: " + why); }
+
+// The grid over the mesh's bounding box: origin at its low corner, 2^bits - 1
+// steps across the largest extent.
+StatusOr<CompactGrid> MakeGrid(const Mesh& mesh, int bits) {
+  Vec3 lo = mesh.positions[0], hi = mesh.positions[0];
+  for (const Vec3& p : mesh.positions) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  CompactGrid grid;
+  grid.bits = bits;
+  for (int k = 0; k < 3; ++k) grid.origin[static_cast<size_t>(k)] = static_cast<float>(lo[k]);
+  const double extent = (hi - lo).maxCoeff();
+  grid.step = extent > 0 ? static_cast<float>(extent / static_cast<double>(grid.MaxIndex())) : 1.0f;
+  if (!std::isfinite(grid.step) || !(grid.step >= FLT_MIN) ||
+      !std::isfinite(grid.origin[0] + grid.origin[1] + grid.origin[2])) {
+    return NotCompact("float32 cannot hold the grid");
+  }
+  return grid;
+}
+
+std::array<int32_t, 3> Quantize(const CompactGrid& grid, const Vec3& p) {
+  std::array<int32_t, 3> q{};
+  for (int k = 0; k < 3; ++k) {
+    const double v = (p[k] - static_cast<double>(grid.origin[static_cast<size_t>(k)])) / static_cast<double>(grid.step);
+    q[static_cast<size_t>(k)] = static_cast<int32_t>(std::clamp<double>(std::round(v), 0.0, grid.MaxIndex()));
+  }
+  return q;
+}
+
+class ChunkWriter {
+ public:
+  ChunkWriter(const Mesh& mesh, const CompactGrid& grid)
+      : mesh_(mesh), grid_(grid), state_(static_cast<uint32_t>(mesh.positions.size())),
+        coded_face_(mesh.faces.size(), false), decoded_id_(mesh.positions.size(), kUnset) {}
+
+  Status Run() {
+    EQMESH_RETURN_IF_ERROR(BuildEdgeFaces());
+    size_t next_seed = 0;
+    for (;;) {
+      while (next_seed < mesh_.faces.size() && coded_face_[next_seed]) ++next_seed;
+      enc_.EncodeBit(&models_.more_components, next_seed < mesh_.faces.size());
+      if (next_seed == mesh_.faces.size()) break;
+      EQMESH_RETURN_IF_ERROR(SeedComponent(next_seed));
+      EQMESH_RETURN_IF_ERROR(GrowComponent());
+    }
+    if (order_.size() != mesh_.positions.size()) return NotCompact("a vertex lies on no face");
+    return Status::Ok();
+  }
+
+  StatusOr<CompactBaseEncoding> Finish() {
+    CompactBaseEncoding out;
+    ByteWriter w;
+    w.PutVarint(mesh_.positions.size());
+    w.PutVarint(mesh_.faces.size());
+    w.PutU8(static_cast<uint8_t>(grid_.bits));
+    for (const float o : grid_.origin) w.PutF32(o);
+    w.PutF32(grid_.step);
+    const std::vector<uint8_t> payload = enc_.Finish();
+    if (mesh_.positions.size() > kCompactMaxVerticesPerByte * payload.size() + kCompactFaceSlack) {
+      return NotCompact("more vertices per byte than a decoder accepts");
+    }
+    w.PutBytes(payload);
+    out.bytes = w.Take();
+    for (const auto& q : quanta_) out.decoded.positions.push_back(grid_.Position(q));
+    out.decoded.faces = state_.faces();
+    out.decoded_to_input = std::move(order_);
+    return out;
+  }
+
+ private:
+  Status BuildEdgeFaces() {
+    for (uint32_t f = 0; f < mesh_.faces.size(); ++f) {
+      const Face& t = mesh_.faces[f];
+      for (int k = 0; k < 3; ++k) {
+        std::vector<uint32_t>& faces = edge_faces_[EdgeKey(t[k], t[(k + 1) % 3])];
+        faces.push_back(f);
+        if (faces.size() > 2) return NotCompact("non-manifold edge");
+      }
+    }
+    return Status::Ok();
+  }
+
+  void CodeNewVertex(uint32_t input, const std::array<int32_t, 3>& prediction, CompactResidualModels* models) {
+    enc_.EncodeBit(&models_.is_new, 1);
+    const std::array<int32_t, 3> q = Quantize(grid_, mesh_.positions[input]);
+    for (size_t k = 0; k < 3; ++k) EncodeResidual(&enc_, models, int64_t{q[k]} - prediction[k]);
+    decoded_id_[input] = static_cast<uint32_t>(order_.size());
+    order_.push_back(input);
+    quanta_.push_back(q);
+  }
+
+  void CodeGlobalIndex(uint32_t id) {
+    const int bits = IndexBits(order_.size());
+    if (bits > 0) enc_.EncodeBits(id, bits);
+  }
+
+  Status SeedComponent(size_t f) {
+    uint32_t corner[3];
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t v = mesh_.faces[f][k];
+      if (decoded_id_[v] == kUnset) {
+        CodeNewVertex(v, SeedPrediction(grid_, quanta_), &models_.seed);
+      } else {
+        enc_.EncodeBit(&models_.is_new, 0);
+        CodeGlobalIndex(decoded_id_[v]);
+      }
+      corner[k] = decoded_id_[v];
+    }
+    return AddFace(f, corner[0], corner[1], corner[2]);
+  }
+
+  // The uncoded input face across gate a->b (decoded ids), or kUnset.
+  StatusOr<uint32_t> FaceAcross(const CompactGate& g) const {
+    const uint32_t a = order_[g.a], b = order_[g.b];
+    const auto it = edge_faces_.find(EdgeKey(a, b));
+    if (it == edge_faces_.end()) return kUnset;
+    for (const uint32_t f : it->second) {
+      if (coded_face_[f]) continue;
+      const Face& t = mesh_.faces[f];
+      for (int k = 0; k < 3; ++k) {
+        if (t[k] == b && t[(k + 1) % 3] == a) return f;
+      }
+      return NotCompact("inconsistent face orientation");
+    }
+    return kUnset;
+  }
+
+  void CodeExistingCorner(const CompactGate& g, uint32_t d) {
+    enc_.EncodeBit(&models_.is_new, 0);
+    state_.Candidates(g.a, g.b, &candidates_);
+    const auto it = std::find(candidates_.begin(), candidates_.end(), d);
+    enc_.EncodeBit(&models_.in_candidates, it != candidates_.end());
+    if (it == candidates_.end()) {
+      CodeGlobalIndex(d);
+      return;
+    }
+    const int bits = IndexBits(candidates_.size());
+    if (bits > 0) enc_.EncodeBits(static_cast<uint32_t>(it - candidates_.begin()), bits);
+  }
+
+  Status GrowComponent() {
+    CompactGate g;
+    while (state_.NextGate(&g)) {
+      EQMESH_ASSIGN_OR_RETURN(const uint32_t f, FaceAcross(g));
+      enc_.EncodeBit(&models_.has_face, f != kUnset);
+      if (f == kUnset) continue;
+      const Face& t = mesh_.faces[f];
+      const uint32_t third = t[0] != order_[g.a] && t[0] != order_[g.b] ? t[0]
+                             : t[1] != order_[g.a] && t[1] != order_[g.b] ? t[1] : t[2];
+      if (decoded_id_[third] == kUnset) {
+        CodeNewVertex(third, ParallelogramPrediction(grid_, quanta_[g.a], quanta_[g.b], quanta_[g.c]),
+                      &models_.predicted);
+      } else {
+        CodeExistingCorner(g, decoded_id_[third]);
+      }
+      EQMESH_RETURN_IF_ERROR(AddFace(f, g.b, g.a, decoded_id_[third]));
+    }
+    return Status::Ok();
+  }
+
+  Status AddFace(size_t f, uint32_t a, uint32_t b, uint32_t c) {
+    if (!state_.AddFace(a, b, c)) return NotCompact("degenerate face or non-manifold edge");
+    coded_face_[f] = true;
+    return Status::Ok();
+  }
+
+  const Mesh& mesh_;
+  const CompactGrid grid_;
+  RangeEncoder enc_;
+  CompactBaseState state_;
+  CompactModels models_;
+  std::unordered_map<uint64_t, std::vector<uint32_t>> edge_faces_;  // looked up only
+  std::vector<bool> coded_face_;
+  std::vector<uint32_t> decoded_id_;  // input vertex -> decoded id
+  std::vector<uint32_t> order_;       // decoded id -> input vertex
+  std::vector<std::array<int32_t, 3>> quanta_;
+  std::vector<uint32_t> candidates_;
+};
+
+}  // namespace
+
+StatusOr<CompactBaseEncoding> EncodeCompactBase(const Mesh& mesh, int bits) {
+  if (bits < 1 || bits > kCompactMaxBits) return InvalidArgument("compact base chunk: depth out of range");
+  if (mesh.positions.size() < 3 || mesh.faces.empty()) return NotCompact("needs a face");
+  if (mesh.faces.size() > kCompactMaxFacesPerVertex * mesh.positions.size() + kCompactFaceSlack) {
+    return NotCompact("more faces than the chunk allows per vertex");
+  }
+  EQMESH_ASSIGN_OR_RETURN(const CompactGrid grid, MakeGrid(mesh, bits));
+  ChunkWriter writer(mesh, grid);
+  EQMESH_RETURN_IF_ERROR(writer.Run());
+  return writer.Finish();
+}
+
+}  // namespace eqmesh
