@@ -21,7 +21,8 @@ void CpuRelax() {
 
 }  // namespace
 
-SpinTeam::SpinTeam(int workers) {
+SpinTeam::SpinTeam(int workers) : tickets_(static_cast<size_t>(workers > 1 ? workers : 1)) {
+  for (auto& t : tickets_) t.store(1);  // batch 0 is over for everyone
   for (int w = 1; w < workers; ++w) helpers_.emplace_back([this, w] { HelperLoop(w); });
 }
 
@@ -43,17 +44,38 @@ void SpinTeam::Run(size_t n, const std::function<void(size_t, int)>& fn) {
   n_ = n;
   fn_ = &fn;
   next_.store(0);
-  finished_.store(0);
   // seq_cst with the helpers' sleepers_ increment: either they see the new
   // batch before sleeping or this sees them asleep and wakes them.
-  batch_.fetch_add(1);
+  const uint64_t batch = batch_.fetch_add(1) + 1;
   if (sleepers_.load() > 0) {
     { std::lock_guard<std::mutex> guard(sleep_lock_); }
     wake_.notify_all();
   }
   Work(0);
-  // Every helper must have left the batch before n_ and fn_ may change.
-  while (finished_.load(std::memory_order_acquire) != helpers_.size()) CpuRelax();
+  // Every helper must be out of the batch before n_ and fn_ may change.
+  for (int w = 1; w <= static_cast<int>(helpers_.size()); ++w) ShutOutOrAwait(w, batch);
+}
+
+bool SpinTeam::Enter(int worker, uint64_t batch) {
+  std::atomic<uint64_t>& ticket = tickets_[static_cast<size_t>(worker)];
+  uint64_t t = ticket.load(std::memory_order_acquire);
+  // A ticket of batch or later: this batch is already over for this helper.
+  return t < 2 * batch && ticket.compare_exchange_strong(t, 2 * batch, std::memory_order_acq_rel);
+}
+
+void SpinTeam::ShutOutOrAwait(int worker, uint64_t batch) {
+  std::atomic<uint64_t>& ticket = tickets_[static_cast<size_t>(worker)];
+  uint64_t t = ticket.load(std::memory_order_acquire);
+  if (t < 2 * batch && ticket.compare_exchange_strong(t, 2 * batch + 1, std::memory_order_acq_rel)) return;
+  // It entered first: its indices are claimed, so it is running fn and ends soon
+  // unless descheduled, when yielding lets it finish sooner.
+  for (int round = 0; ticket.load(std::memory_order_acquire) != 2 * batch + 1; ++round) {
+    if (round < kSpinRounds) {
+      CpuRelax();
+    } else {
+      std::this_thread::yield();
+    }
+  }
 }
 
 void SpinTeam::Work(int worker) {
@@ -80,8 +102,9 @@ void SpinTeam::HelperLoop(int worker) {
   uint64_t seen = 0;
   while (WaitForBatch(seen)) {
     seen = batch_.load(std::memory_order_acquire);
+    if (!Enter(worker, seen)) continue;
     Work(worker);
-    finished_.fetch_add(1, std::memory_order_release);
+    tickets_[static_cast<size_t>(worker)].store(2 * seen + 1, std::memory_order_release);
   }
 }
 

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <thread>
@@ -36,6 +37,24 @@ TEST(SpinTeam, WakesHelpersThatFellAsleep) {
     // Longer than the spin and yield phases: the helpers go to sleep.
     std::this_thread::sleep_for(std::chrono::milliseconds(30));
   }
+}
+
+// More runnable threads than cores: helpers are often descheduled, so batches
+// end without them (shut out) or with them (entered first); either way every
+// index runs once, and a helper shut out of one batch joins a later one.
+TEST(SpinTeam, OversubscribedBatchesStillCallEveryIndexOnce) {
+  std::atomic<bool> stop{false};
+  std::vector<std::thread> busy;
+  const unsigned cores = std::max(2u, std::thread::hardware_concurrency());
+  for (unsigned k = 0; k < cores; ++k) {
+    busy.emplace_back([&stop] {
+      while (!stop.load(std::memory_order_relaxed)) std::this_thread::yield();
+    });
+  }
+  SpinTeam team(3);
+  for (int batch = 0; batch < 10000; ++batch) ExpectEachIndexOnce(&team, static_cast<size_t>(batch % 13));
+  stop = true;
+  for (std::thread& t : busy) t.join();
 }
 
 TEST(SpinTeam, OneWorkerRunsInline) {
