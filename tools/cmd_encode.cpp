@@ -216,7 +216,7 @@ int RunEncode(int argc, char** argv) {
                  "--lambda picks its last bit plane) | uniform (baseline)")
       ->check(CLI::IsMember({"eq", "zerotree", "uniform"}));
   app.add_option("--tangential-factor", a.tangential_factor,
-                 "tangential components use lambda / F (default: 4 lifted, 1 unlifted, measured; the seed paper uses 100)")
+                 "tangential components use lambda / F (default: 4 lifted, 2 unlifted, measured; the seed paper uses 100)")
       ->check(CLI::Range(1e-6, 1e6));
   app.add_option("--levels", a.levels, "subdivision levels (-1: automatic)")->check(CLI::Range(-1, 10));
   app.add_option("--base-vertices", a.base_vertices, "base mesh size to aim for (-1: automatic)")

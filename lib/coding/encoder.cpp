@@ -495,7 +495,7 @@ StatusOr<Pass> EncodeWithTarget(const Prepared& prep, const EncodeOptions& optio
 }  // namespace
 
 double DefaultTangentialFactor(bitstream::TransformId transform) {
-  return transform == bitstream::TransformId::kLifted ? 4.0 : 1.0;
+  return transform == bitstream::TransformId::kLifted ? 4.0 : 2.0;
 }
 
 StatusOr<std::vector<uint8_t>> Encode(const SemiRegularMesh& mesh, const EncodeOptions& requested,

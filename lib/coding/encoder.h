@@ -63,12 +63,14 @@ struct EncodeOptions {
   ProgressFn progress;
 };
 
-// 4 for the lifted transform, 1 for the unlifted one. Measured with the per-level
+// 4 for the lifted transform, 2 for the unlifted one. Measured with the per-level
 // lambda of the EQ chunks (level_encoder.cpp; codec log in bench/README.md): 4 beat 1
 // at every point on bunny and horse, both transforms (+0.4 to +1.2 dB, zerotree +1.0 /
 // +1.1 dB at 1 bpv), and on igea lifted; but igea unlifted fell from 91.7 to 85.2 dB at
 // 4 bpv with 4 (outliers of the decoded surface, B->A Hausdorff 3.5e-3 diagonal), so
-// the unlifted transform keeps 1.
+// the unlifted transform kept 1 until session 9, when 2 measured against 1 (0.25 / 1 /
+// 4 bpv) bunny +0.06 / +0.78 / +0.07 dB, horse +0.55 / +1.10 / 0.00, skull 1 and 4 bpv
+// +0.64 / +0.24, armadillo +0.26 / +0.17, and igea 4 bpv 91.60 dB with either.
 double DefaultTangentialFactor(bitstream::TransformId transform);
 
 struct EncodeReport {
