@@ -283,7 +283,8 @@ StatusOr<std::vector<MeshChunkEncoding>> EncodeBaseCandidates(const Mesh& base, 
   std::vector<MeshChunkEncoding> candidates;
   Status last = Status::Ok();
   for (int bits = bitstream::kBaseMinBits; bits <= bitstream::kBaseMaxBits; ++bits) {
-    StatusOr<MeshChunkEncoding> enc = draco_only ? EncodeMeshWithDraco(base, bits) : EncodeCompactCandidate(base, bits);
+    StatusOr<MeshChunkEncoding> enc =
+        draco_only ? EncodeMeshWithDraco(base, bits) : EncodeCompactCandidate(base, bits);
     if (!enc.ok() && !draco_only) enc = EncodeMeshWithDraco(base, bits);
     if (enc.ok()) {
       candidates.push_back(std::move(*enc));

@@ -1,13 +1,15 @@
 // Encoding of the base mesh (connectivity + level-0 scaling values) and of the
-// kept-exactly components, with Google Draco (see base_mesh_decoder.h for the
-// format and the departure from the seed paper's TG coder).
+// kept-exactly components: the base in the compact chunk (compact_base/) where it
+// is a manifold, consistently oriented mesh, else (and the kept components always)
+// with Google Draco (see base_mesh_decoder.h for the departure from the seed
+// paper's TG coder).
 //
 // R-D choice of the scaling-value depth (seed paper sec. 4 quantizes scaling
 // coefficients "using variable bit rate" but does not say how; its future work asks
 // for the R-D trade-off between scaling and wavelet coefficients). We try every
-// Draco position depth b in [kBaseMinBits, kBaseMaxBits] and keep the b minimising
+// position depth b in [kBaseMinBits, kBaseMaxBits] and keep the b minimising
 //     J(b) = R(b) + lambda_world * sum_i w_i * |x_i - x^_i(b)|^2
-// with R in bits (the whole Draco chunk), x^ the Draco-decoded value and w_i the
+// with R in bits (the whole chunk), x^ the decoded value and w_i the
 // influence of base vertex i: the squared-norm energy, at the finest level, of the
 // subdivision basis function of vertex i (BaseInfluenceWeights). That is the error
 // a base displacement leaves when no finer detail corrects it. The closed loop
@@ -35,7 +37,7 @@ namespace eqmesh {
 
 struct MeshChunkEncoding {
   std::vector<uint8_t> bytes;                // the chunk that goes in the stream
-  Mesh decoded;                              // exactly what DecodeDracoMesh returns for it
+  Mesh decoded;                              // exactly what the chunk's decoder returns for it
   std::vector<uint32_t> decoded_to_input;    // decoded vertex i was input vertex [i]
                                              // (empty when no map was asked for)
   int bits = 0;                              // position quantization depth

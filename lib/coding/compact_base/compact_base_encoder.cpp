@@ -17,24 +17,17 @@ namespace {
 
 constexpr uint32_t kUnset = std::numeric_limits<uint32_t>::max();
 
-uint64_t EdgeKey(uint32_t u, uint32_t v) {
-  return (uint64_t{std::max(u, v)} << 32) | std::min(u, v);
-}
-
 Status NotCompact(const std::string& why) { return UnsupportedFeature("compact base chunk: " + why); }
 
 // The grid over the mesh's bounding box: origin at its low corner, 2^bits - 1
 // steps across the largest extent.
+// (Unreferenced vertices do not count; a mesh with one is refused after the traversal.)
 StatusOr<CompactGrid> MakeGrid(const Mesh& mesh, int bits) {
-  Vec3 lo = mesh.positions[0], hi = mesh.positions[0];
-  for (const Vec3& p : mesh.positions) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
+  const BoundingBox box = ComputeBoundingBox(mesh);
   CompactGrid grid;
   grid.bits = bits;
-  for (int k = 0; k < 3; ++k) grid.origin[static_cast<size_t>(k)] = static_cast<float>(lo[k]);
-  const double extent = (hi - lo).maxCoeff();
+  for (int k = 0; k < 3; ++k) grid.origin[static_cast<size_t>(k)] = static_cast<float>(box.min[k]);
+  const double extent = (box.max - box.min).maxCoeff();
   grid.step = extent > 0 ? static_cast<float>(extent / static_cast<double>(grid.MaxIndex())) : 1.0f;
   if (!std::isfinite(grid.step) || !(grid.step >= FLT_MIN) ||
       !std::isfinite(grid.origin[0] + grid.origin[1] + grid.origin[2])) {
@@ -97,7 +90,7 @@ class ChunkWriter {
     for (uint32_t f = 0; f < mesh_.faces.size(); ++f) {
       const Face& t = mesh_.faces[f];
       for (int k = 0; k < 3; ++k) {
-        std::vector<uint32_t>& faces = edge_faces_[EdgeKey(t[k], t[(k + 1) % 3])];
+        std::vector<uint32_t>& faces = edge_faces_[CompactEdgeKey(t[k], t[(k + 1) % 3])];
         faces.push_back(f);
         if (faces.size() > 2) return NotCompact("non-manifold edge");
       }
@@ -137,7 +130,7 @@ class ChunkWriter {
   // The uncoded input face across gate a->b (decoded ids), or kUnset.
   StatusOr<uint32_t> FaceAcross(const CompactGate& g) const {
     const uint32_t a = order_[g.a], b = order_[g.b];
-    const auto it = edge_faces_.find(EdgeKey(a, b));
+    const auto it = edge_faces_.find(CompactEdgeKey(a, b));
     if (it == edge_faces_.end()) return kUnset;
     for (const uint32_t f : it->second) {
       if (coded_face_[f]) continue;

@@ -4,14 +4,6 @@
 #include <algorithm>
 
 namespace eqmesh {
-namespace {
-
-uint64_t EdgeKey(uint32_t u, uint32_t v) {
-  const uint32_t lo = std::min(u, v), hi = std::max(u, v);
-  return (uint64_t{hi} << 32) | lo;
-}
-
-}  // namespace
 
 Vec3 CompactGrid::Position(const std::array<int32_t, 3>& q) const {
   const double s = static_cast<double>(step);
@@ -21,7 +13,7 @@ Vec3 CompactGrid::Position(const std::array<int32_t, 3>& q) const {
 }
 
 uint32_t CompactBaseState::EdgeFaces(uint32_t u, uint32_t v) const {
-  const auto it = edge_faces_.find(EdgeKey(u, v));
+  const auto it = edge_faces_.find(CompactEdgeKey(u, v));
   return it == edge_faces_.end() ? 0u : it->second;
 }
 
@@ -33,7 +25,7 @@ bool CompactBaseState::AddFace(uint32_t a, uint32_t b, uint32_t c) {
   }
   for (int k = 0; k < 3; ++k) {
     const uint32_t u = corners[k], v = corners[(k + 1) % 3];
-    uint8_t& count = edge_faces_[EdgeKey(u, v)];
+    uint8_t& count = edge_faces_[CompactEdgeKey(u, v)];
     if (count++ == 0) {
       neighbours_[u].push_back(v);
       neighbours_[v].push_back(u);

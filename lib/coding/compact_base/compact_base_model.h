@@ -57,6 +57,11 @@ struct CompactGrid {
   Vec3 Position(const std::array<int32_t, 3>& q) const;
 };
 
+// Key of the undirected edge {u, v} in both sides' edge maps.
+inline uint64_t CompactEdgeKey(uint32_t u, uint32_t v) {
+  return (uint64_t{u > v ? u : v} << 32) | (u > v ? v : u);
+}
+
 // A directed edge a->b of a coded face whose third corner is c.
 struct CompactGate {
   uint32_t a = 0, b = 0, c = 0;
