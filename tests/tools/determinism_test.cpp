@@ -40,8 +40,9 @@ constexpr uint64_t kSingleLambdaGoldenGeometryHash = 0x71e7acd35de5e8d0ull;
 // widening fold clusters). Session 8's coarse-patch refills leave it as it was:
 // on this small sample they would take the normal share below 0.90.
 // Session 9: the base depth's closed-loop share, the compact base chunk (1.2) and
-// the unlifted transform's default tangential factor 2.
-constexpr uint64_t kBlobStreamHash = 0xe237bab8900295ccull;
+// the unlifted transform's default tangential factor 2. Session 10: lifted is
+// the default transform.
+constexpr uint64_t kBlobStreamHash = 0x08eb714d2daafde1ull;
 
 // Positions (float32, as every consumer stores them) then indices.
 uint64_t GeometryHash(const Mesh& mesh) {
