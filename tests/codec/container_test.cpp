@@ -43,6 +43,16 @@ TEST(ByteIo, VarintsRoundTripAndRejectOverlong) {
   const uint8_t too_big[] = {0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0x02};
   ByteReader bad2(too_big, sizeof too_big, "test");
   EXPECT_EQ(bad2.ReadVarint(&v).code(), StatusCode::kCorruptStream);
+  // 5 written in two bytes (0x85 0x00) and in three: overlong, corrupt (spec A.1);
+  // 0 as the single byte 0x00 stays valid.
+  for (const std::vector<uint8_t>& padded : {std::vector<uint8_t>{0x85, 0x00}, std::vector<uint8_t>{0x85, 0x80, 0x00}}) {
+    ByteReader r2(padded.data(), padded.size(), "test");
+    EXPECT_EQ(r2.ReadVarint(&v).code(), StatusCode::kCorruptStream);
+  }
+  const uint8_t zero[] = {0x00};
+  ByteReader r3(zero, 1, "test");
+  ASSERT_TRUE(r3.ReadVarint(&v).ok());
+  EXPECT_EQ(v, 0u);
 }
 
 TEST(ByteIo, SpanAndBoundedReadsCheckLength) {

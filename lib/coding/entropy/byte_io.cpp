@@ -80,6 +80,9 @@ Status ByteReader::ReadVarint(uint64_t* v) {
     if (i == 9 && byte > 1) return Corrupt("varint overflows 64 bits");
     out |= static_cast<uint64_t>(byte & 0x7F) << (7 * i);
     if ((byte & 0x80) == 0) {
+      // One value, one encoding (spec A.1): a zero final group after the first
+      // byte only pads, so a stream could not be compared or hashed by value.
+      if (i > 0 && byte == 0) return Corrupt("overlong varint (a final byte of 0)");
       *v = out;
       return Status::Ok();
     }
