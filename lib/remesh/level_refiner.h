@@ -43,7 +43,8 @@ class LevelRefiner {
     fine_ = static_cast<double>(dom_.faces().size()) >= kFineLevelFaceRatio * static_cast<double>(s.mesh->faces.size());
   }
 
-  void Run(std::vector<Vec3>* positions, std::vector<VertexKind>* kinds, LevelStats* stats);
+  void Run(const StencilTable& stencils, std::vector<Vec3>* positions, std::vector<VertexKind>* kinds,
+           LevelStats* stats);
   std::vector<ParamPoint> TakeParams() { return std::move(params_out_); }
 
  private:

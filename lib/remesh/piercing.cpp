@@ -416,9 +416,9 @@ void LevelRefiner::ForwardMapDemoted() {
   });
 }
 
-void LevelRefiner::Run(std::vector<Vec3>* positions, std::vector<VertexKind>* kinds, LevelStats* stats) {
+void LevelRefiner::Run(const StencilTable& stencils, std::vector<Vec3>* positions, std::vector<VertexKind>* kinds,
+                       LevelStats* stats) {
   BuildBuckets();
-  const StencilTable stencils = BuildButterflyStencils(h_, j_);
   ApplyStencils(stencils, pos_, &predicted_);
   frames_ = ComputeOddFrames(h_, j_, stencils, pos_);
   const size_t n_edges = dom_.num_edges();
@@ -490,12 +490,12 @@ InputSurface::InputSurface(const Mesh& m, const TriangleBvh& b, std::vector<uint
 }
 
 void RefineLevel(const SemiRegularHierarchy& hierarchy, int j, const InputSurface& surface,
-                 std::vector<Vec3>* positions, std::vector<VertexKind>* kinds, std::vector<ParamPoint>* params,
-                 LevelStats* stats) {
+                 const StencilTable& stencils, std::vector<Vec3>* positions, std::vector<VertexKind>* kinds,
+                 std::vector<ParamPoint>* params, LevelStats* stats) {
   *stats = LevelStats();
   std::vector<Vec3> level = *positions;
   remesh_internal::LevelRefiner refiner(hierarchy, j, surface, &level, params);
-  refiner.Run(positions, kinds, stats);
+  refiner.Run(stencils, positions, kinds, stats);
   *params = refiner.TakeParams();
 }
 

@@ -42,6 +42,7 @@
 #include "mesh/semi_regular.h"
 #include "mesh/triangle_bvh.h"
 #include "remesh/param_point.h"
+#include "wavelet/butterfly.h"
 
 namespace eqmesh {
 
@@ -64,8 +65,10 @@ struct LevelStats {
 // `hierarchy` must have at least j+1 levels. `positions` holds level-j positions
 // on entry and level-(j+1) positions on return; `kinds` gets the odd vertices'
 // kinds appended; `params` (one per input vertex) moves from level j to j+1.
+// `stencils`: BuildButterflyStencils(hierarchy, j), built by the caller so the
+// untangling can reuse it (StencilCache).
 void RefineLevel(const SemiRegularHierarchy& hierarchy, int j, const InputSurface& surface,
-                 std::vector<Vec3>* positions, std::vector<VertexKind>* kinds, std::vector<ParamPoint>* params,
-                 LevelStats* stats);
+                 const StencilTable& stencils, std::vector<Vec3>* positions, std::vector<VertexKind>* kinds,
+                 std::vector<ParamPoint>* params, LevelStats* stats);
 
 }  // namespace eqmesh

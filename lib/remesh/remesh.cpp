@@ -163,6 +163,7 @@ struct Refinement {
   int levels = 0;
   std::vector<double> estimated_psnr_db_per_level;
   std::vector<uint32_t> finest_folded_faces;
+  std::vector<StencilTable> stencils;  // of each refinement, for the untangling
 };
 
 // Normal share of the new, non-boundary vertices, per level and over all, from
@@ -197,20 +198,20 @@ StatusOr<Refinement> RefineAllLevels(const RefineContext& c) {
   for (uint32_t v : c.base.base_to_input) r.positions.push_back(c.surface_mesh.positions[v]);
   r.kinds.assign(nb, VertexKind::kBase);
   std::vector<ParamPoint> params = c.base.params;
+  // One level at a time (Refine gives what Build would), so no level is built twice.
+  EQMESH_ASSIGN_OR_RETURN(r.hierarchy, SemiRegularHierarchy::Build(nb, c.base.faces, 0));
   while (true) {
     const uint64_t next_vertices = r.levels == 0 ? nb + 3ull * c.base.faces.size() / 2
                                                  : static_cast<uint64_t>(r.positions.size()) * 4;
     if (StopRefining(c.options, r.levels, r.estimated_psnr_db_per_level, next_vertices, c.input_vertices)) break;
-    EQMESH_ASSIGN_OR_RETURN(r.hierarchy, SemiRegularHierarchy::Build(nb, c.base.faces, r.levels + 1));
+    EQMESH_RETURN_IF_ERROR(r.hierarchy.Refine());
     ReportProgress(c.options.progress, std::string("pierce level ") + std::to_string(r.levels + 1), 0.0);
     LevelStats stats;
-    RefineLevel(r.hierarchy, r.levels, c.surface, &r.positions, &r.kinds, &params, &stats);
+    r.stencils.push_back(BuildButterflyStencils(r.hierarchy, r.levels));
+    RefineLevel(r.hierarchy, r.levels, c.surface, r.stencils.back(), &r.positions, &r.kinds, &params, &stats);
     r.estimated_psnr_db_per_level.push_back(EstimatedPsnrDb(c.diagonal, stats.rms_error));
     r.finest_folded_faces = std::move(stats.folded_faces);
     ++r.levels;
-  }
-  if (r.levels == 0 || r.hierarchy.levels() != r.levels) {
-    EQMESH_ASSIGN_OR_RETURN(r.hierarchy, SemiRegularHierarchy::Build(nb, c.base.faces, r.levels));
   }
   return r;
 }
@@ -276,7 +277,8 @@ StatusOr<SemiRegularMesh> Remesh(const Mesh& input, const RemeshOptions& options
   const RefineContext context{base, prep.surface, surface, options, diagonal, prep.input_vertices};
   EQMESH_ASSIGN_OR_RETURN(Refinement best, RefineAllLevels(context));
   report.stage_seconds.refine = seconds_since_lap();
-  UntangleFinestLevel(best.hierarchy, surface, best.finest_folded_faces, &best.positions, &best.kinds);
+  UntangleFinestLevel(best.hierarchy, surface, best.finest_folded_faces, std::move(best.stencils), &best.positions,
+                      &best.kinds);
   report.stage_seconds.untangle = seconds_since_lap();
   CountNormalVertices(best.hierarchy, best.kinds, &report);
   out.hierarchy = std::move(best.hierarchy);

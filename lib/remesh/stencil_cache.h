@@ -15,8 +15,12 @@ namespace eqmesh {
 
 class StencilCache {
  public:
-  explicit StencilCache(const SemiRegularHierarchy& hierarchy)
-      : hierarchy_(hierarchy), tables_(static_cast<size_t>(hierarchy.levels())) {}
+  // `built[j]`, when given, must be BuildButterflyStencils(hierarchy, j): the
+  // refinement's own tables, so the untangling does not build them again.
+  explicit StencilCache(const SemiRegularHierarchy& hierarchy, std::vector<StencilTable> built = {})
+      : hierarchy_(hierarchy), tables_(static_cast<size_t>(hierarchy.levels())) {
+    for (size_t j = 0; j < built.size() && j < tables_.size(); ++j) tables_[j] = std::move(built[j]);
+  }
 
   // Stencils of refinement j -> j+1 (BuildButterflyStencils).
   const StencilTable& Level(int j) {

@@ -597,12 +597,12 @@ size_t MoveFoldedCorners(const SemiRegularHierarchy& hierarchy, const std::vecto
 }  // namespace
 
 size_t UntangleFinestLevel(const SemiRegularHierarchy& hierarchy, const InputSurface& surface,
-                           const std::vector<uint32_t>& folded, std::vector<Vec3>* positions,
-                           std::vector<VertexKind>* kinds) {
+                           const std::vector<uint32_t>& folded, std::vector<StencilTable> built,
+                           std::vector<Vec3>* positions, std::vector<VertexKind>* kinds) {
   if (hierarchy.levels() < 1 || folded.empty()) return 0;
   Untangler u(hierarchy.Faces(hierarchy.levels()), surface, positions, *kinds);
   const std::vector<Vec3> start = *positions;
-  StencilCache stencils(hierarchy);
+  StencilCache stencils(hierarchy, std::move(built));
   size_t marked = MoveFoldedCorners(hierarchy, folded, start, &stencils, kinds, &u);
   // The refills' non-normal vertices may not take the share below the floor
   // the moves kept: then they are undone as a whole.
