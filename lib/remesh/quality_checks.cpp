@@ -20,23 +20,10 @@ bool FacesAwayFromInput(const TriangleBvh& bvh, const Mesh& input, const Vec3& a
   // tree. A bound that misses (a corner off the surface) falls back to the full
   // search below, and a bound never changes which face is found (the traversal
   // order does not depend on it), so the result is the unbounded query's.
-  double reach = std::min({(a - centroid).norm(), (b - centroid).norm(), (c - centroid).norm()}) * (1.0 + 1e-9);
-  // Callers test neighbouring triangles one after another, so the input face the
-  // last test on this thread found is usually close to this centroid too, and its
-  // distance is a far tighter bound than a corner's. Any face of `input` bounds
-  // the search, so the result does not depend on the hint (nor on the thread).
-  thread_local uint32_t hint = kNoFace;
-  if (hint < input.faces.size()) {
-    const Face& h = input.faces[hint];
-    std::array<double, 3> unused;
-    const Vec3 q = ClosestPointOnTriangle(centroid, input.positions[h[0]], input.positions[h[1]],
-                                          input.positions[h[2]], &unused);
-    reach = std::min(reach, (q - centroid).norm() * (1.0 + 1e-9));
-  }
+  const double reach = std::min({(a - centroid).norm(), (b - centroid).norm(), (c - centroid).norm()}) * (1.0 + 1e-9);
   ClosestPointResult cp = bvh.ClosestPoint(centroid, reach);
   if (!cp.found()) cp = bvh.ClosestPoint(centroid);
   if (!cp.found()) return false;
-  hint = cp.face;
   if (error) *error += n.norm() * cp.squared_distance;
   const Face& g = input.faces[cp.face];
   const Vec3 m = (input.positions[g[1]] - input.positions[g[0]]).cross(input.positions[g[2]] - input.positions[g[0]]);
