@@ -31,11 +31,11 @@
 namespace eqmesh {
 
 // `folded`: the finest faces that fold (LevelStats::folded_faces of the last
-// refinement). `stencils`: the refinement's butterfly stencils, level by level
+// refinement). `built`: the refinement's butterfly stencils, level by level
 // (any prefix, also none; the rest are built when needed). Returns how many
 // normal vertices became non-normal.
 size_t UntangleFinestLevel(const SemiRegularHierarchy& hierarchy, const InputSurface& surface,
-                           const std::vector<uint32_t>& folded, std::vector<StencilTable> stencils,
+                           const std::vector<uint32_t>& folded, std::vector<StencilTable> built,
                            std::vector<Vec3>* positions, std::vector<VertexKind>* kinds);
 
 }  // namespace eqmesh
