@@ -26,10 +26,15 @@ namespace {
 
 constexpr const char* kName = "encode";
 
+const char* TransformName(bitstream::TransformId transform) {
+  return transform == bitstream::TransformId::kLifted ? "lifted" : "unlifted";
+}
+
 struct EncodeArgs {
   std::string in_path, out_path;
   double bpv = 0, lambda = 0, psnr = 0, tangential_factor = 0.0;
-  std::string transform = "lifted", coder = "eq";
+  // The library's default transform (encoder.h says why), so the two cannot drift apart.
+  std::string transform = TransformName(EncodeOptions().transform), coder = "eq";
   std::string original_path;
   int levels = -1, base_vertices = -1;
   int threads = 0;
@@ -209,7 +214,8 @@ int RunEncode(int argc, char** argv) {
                    ->check(CLI::Range(1.0, 300.0));
   bpv->excludes(lambda)->excludes(psnr);
   lambda->excludes(psnr);
-  app.add_option("--transform", a.transform, "butterfly wavelet: lifted (default: measured better on every bench mesh and rate) | unlifted")
+  app.add_option("--transform", a.transform,
+                 std::string("butterfly wavelet: lifted | unlifted (default: ") + a.transform + ")")
       ->check(CLI::IsMember({"unlifted", "lifted"}));
   app.add_option("--coder", a.coder,
                  "coefficient coder: eq | zerotree (embedded, PGC baseline; --bpv cuts it exactly, "
