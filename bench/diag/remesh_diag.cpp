@@ -142,7 +142,7 @@ int main(int argc, char** argv) {
   }
   std::string png, strip;
   Vec3 view_dir = Vec3::Zero();
-  int zoom = 0, top = 12, level = -1;
+  int zoom = 0, top = 12, level = -1, list_folds = 0;
   bool have_at = false;
   Vec3 at = Vec3::Zero();
   double at_size = 0.03, bad = 0.0;
@@ -154,6 +154,7 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--size")) at_size = std::atof(argv[i + 1]);
     else if (!std::strcmp(argv[i], "--strip")) strip = argv[i + 1];
     else if (!std::strcmp(argv[i], "--bad")) bad = std::atof(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--folds")) list_folds = std::atoi(argv[i + 1]);
     else if (!std::strcmp(argv[i], "--view")) std::sscanf(argv[i + 1], "%lf,%lf,%lf", &view_dir[0], &view_dir[1], &view_dir[2]);
     else if (!std::strcmp(argv[i], "--at")) {
       have_at = true;
@@ -224,6 +225,31 @@ int main(int argc, char** argv) {
     }
     std::printf("  %zu fold clusters:", fc.size());
     for (size_t k = 0; k < fc.size() && k < 40; ++k) std::printf(" %d@(%.3g,%.3g,%.3g)", cnt[k], fc[k][0], fc[k][1], fc[k][2]);
+    std::printf("\n");
+  }
+  // Folded faces one by one: is the centroid's closest input face on the other
+  // side of a thin part (corners agree with the face, the centroid does not)?
+  const char* kind_letters = "BNnb";
+  for (size_t f = 0, shown = 0; f < fin.size() && static_cast<int>(shown) < list_folds; ++f) {
+    if (!fin[f].folded) continue;
+    ++shown;
+    const Face& face = h.Faces(L)[f];
+    const Vec3 p[3] = {srm->positions[face[0]], srm->positions[face[1]], srm->positions[face[2]]};
+    const Vec3 n = (p[1] - p[0]).cross(p[2] - p[0]).normalized();
+    auto input_normal = [&](uint32_t g) {
+      const Face& t = input->faces[g];
+      return Vec3((input->positions[t[1]] - input->positions[t[0]]).cross(input->positions[t[2]] - input->positions[t[0]]).normalized());
+    };
+    const Vec3 c = (p[0] + p[1] + p[2]) / 3.0;
+    const ClosestPointResult cc = bvh->ClosestPoint(c);
+    const double longest = std::max({(p[1] - p[0]).norm(), (p[2] - p[1]).norm(), (p[0] - p[2]).norm()});
+    std::printf("fold %zu L%d at (%.4g,%.4g,%.4g): centroid dist %.2g diag, dot %.2f, longest edge %.2g diag; corners:", f, L,
+                c[0], c[1], c[2], std::sqrt(cc.squared_distance) / diag, n.dot(input_normal(cc.face)), longest / diag);
+    for (int i = 0; i < 3; ++i) {
+      const ClosestPointResult ci = bvh->ClosestPoint(p[i]);
+      std::printf(" [%c dist %.1g dot %.2f]", srm->kinds.empty() ? '?' : kind_letters[static_cast<int>(srm->kinds[face[i]])],
+                  std::sqrt(ci.squared_distance) / diag, n.dot(input_normal(ci.face)));
+    }
     std::printf("\n");
   }
   // Worst faces with their ancestry.

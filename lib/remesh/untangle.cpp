@@ -48,6 +48,8 @@ constexpr size_t kMaxClusterVertices = 512;
 // Moves of coarser vertices stop short of making the remesh's normal share
 // (the remesh bar, bench/README_remesh.md) drop below this.
 constexpr double kMinNormalShare = 0.90;
+// Rounds of MoveCornersOfNewFolds, each seeded with what still folds.
+constexpr int kCleanupRounds = 4;
 
 // Edges of `mesh` that only one face uses (its boundary curves), by (min, max).
 std::vector<Edge> InputBoundaryEdges(const Mesh& mesh) {
@@ -594,6 +596,43 @@ size_t MoveFoldedCorners(const SemiRegularHierarchy& hierarchy, const std::vecto
   return marked;
 }
 
+// The faces of MaybeFolded that fold now.
+std::vector<uint32_t> StillFolded(const Untangler& u, const std::vector<uint32_t>& folded,
+                                  const std::vector<Vec3>& start) {
+  std::vector<uint32_t> now;
+  for (uint32_t f : MaybeFolded(u, folded, start)) {
+    if (u.Folded(f, nullptr)) now.push_back(f);
+  }
+  return now;
+}
+
+// Cluster sweeps and patch refills may fold faces that the moves, seeded with
+// the refinement's folds, never looked at (skull: 7 folds, 6 of them such).
+// More rounds of moves at every level, each seeded with the faces that fold
+// now; a round is kept only while the normal share stays at the floor (or
+// where it was, if already below).
+size_t MoveCornersOfNewFolds(const SemiRegularHierarchy& hierarchy, const std::vector<uint32_t>& folded,
+                             const std::vector<Vec3>& start, StencilCache* cache, std::vector<VertexKind>* kinds,
+                             Untangler* u) {
+  size_t marked = 0;
+  std::vector<uint32_t> now = StillFolded(*u, folded, start);
+  for (int round = 0; round < kCleanupRounds && !now.empty(); ++round) {
+    const std::vector<Vec3> before = u->pos;
+    const double share_floor = std::min(kMinNormalShare, NormalFraction(hierarchy, *kinds));
+    auto [trial, round_marked] = UntangleFrom(hierarchy, 0, now, *kinds, NormalsAboveFloor(hierarchy, *kinds), cache, u);
+    if (NormalFraction(hierarchy, trial) < share_floor) {
+      u->pos = before;
+      break;
+    }
+    *kinds = std::move(trial);
+    marked += round_marked;
+    const size_t count = now.size();
+    now = StillFolded(*u, folded, start);
+    if (now.size() >= count) break;
+  }
+  return marked;
+}
+
 }  // namespace
 
 size_t UntangleFinestLevel(const SemiRegularHierarchy& hierarchy, const InputSurface& surface,
@@ -614,10 +653,11 @@ size_t UntangleFinestLevel(const SemiRegularHierarchy& hierarchy, const InputSur
   if (NormalFraction(hierarchy, refilled_kinds) < kMinNormalShare &&
       NormalFraction(hierarchy, *kinds) >= kMinNormalShare) {
     *positions = moved_only;
-    return marked;
+  } else {
+    *kinds = std::move(refilled_kinds);
+    marked += refill_marked;
   }
-  *kinds = std::move(refilled_kinds);
-  return marked + refill_marked;
+  return marked + MoveCornersOfNewFolds(hierarchy, folded, start, &stencils, kinds, &u);
 }
 
 }  // namespace eqmesh

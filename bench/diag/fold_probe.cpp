@@ -1,0 +1,92 @@
+// Fold probe (developer tool): for every folded finest face of a remesh, what
+// single-vertex moves of its corners would do (kernel centre of the fan, on and
+// off the input; neighbour centroid), to see why the untangler left it.
+//   fold_probe INPUT REMESH.srm
+#include <cstdio>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "mesh/mesh_io.h"
+#include "mesh/semi_regular_io.h"
+#include "mesh/triangle_bvh.h"
+#include "remesh/fan_kernel.h"
+#include "remesh/quality_checks.h"
+
+using namespace eqmesh;
+
+int main(int argc, char** argv) {
+  if (argc < 3) return 2;
+  auto input = ReadMesh(argv[1]);
+  auto srm = ReadSemiRegular(argv[2]);
+  if (!input.ok() || !srm.ok()) return 1;
+  auto bvh = TriangleBvh::Build(*input);
+  const auto& faces = srm->hierarchy.Faces(srm->hierarchy.levels());
+  std::vector<Vec3> pos = srm->positions;
+  std::vector<std::vector<uint32_t>> inc(pos.size());
+  for (uint32_t f = 0; f < faces.size(); ++f)
+    for (uint32_t v : faces[f]) inc[v].push_back(f);
+  auto folded = [&](uint32_t f) {
+    const Face& t = faces[f];
+    return FacesAwayFromInput(*bvh, *input, pos[t[0]], pos[t[1]], pos[t[2]]);
+  };
+  auto fan_folds = [&](uint32_t v) {
+    int n = 0;
+    for (uint32_t f : inc[v]) n += folded(f);
+    return n;
+  };
+  auto input_normal = [&](const Vec3& p) {
+    const ClosestPointResult cp = bvh->ClosestPoint(p);
+    const Face& g = input->faces[cp.face];
+    return Vec3((input->positions[g[1]] - input->positions[g[0]]).cross(input->positions[g[2]] - input->positions[g[0]]).normalized());
+  };
+  const char* kinds = "BNnb";
+  {
+    std::vector<int> valence(srm->hierarchy.NumVertices(0), 0);
+    for (const Face& f : srm->hierarchy.Faces(0))
+      for (uint32_t v : f) ++valence[v];
+    std::vector<int> histogram(16, 0);
+    for (int d : valence) ++histogram[std::min(d, 15)];
+    std::printf("base valences (faces per vertex):");
+    for (int d = 0; d < 16; ++d)
+      if (histogram[d]) std::printf(" %d:%d", d, histogram[d]);
+    std::printf("\n");
+  }
+  for (uint32_t f = 0; f < faces.size(); ++f) {
+    if (!folded(f)) continue;
+    std::printf("face %u\n", f);
+    for (uint32_t v : faces[f]) {
+      const Vec3 start = pos[v];
+      const Vec3 facing = input_normal(start);
+      std::vector<std::pair<Vec3, Vec3>> opposite;
+      Vec3 centroid = Vec3::Zero();
+      int cn = 0;
+      for (uint32_t g : inc[v]) {
+        const Face& t = faces[g];
+        const int c = t[0] == v ? 0 : t[1] == v ? 1 : 2;
+        opposite.emplace_back(pos[t[(c + 1) % 3]], pos[t[(c + 2) % 3]]);
+        for (uint32_t w : t) if (w != v) { centroid += pos[w]; ++cn; }
+      }
+      centroid /= cn;
+      std::printf("  v %u kind %c valence %zu folds %d", v, kinds[static_cast<int>(srm->kinds[v])], inc[v].size(), fan_folds(v));
+      auto try_at = [&](const char* name, const Vec3& p) {
+        pos[v] = p;
+        const int n = fan_folds(v);
+        pos[v] = start;
+        const ClosestPointResult cp = bvh->ClosestPoint(p);
+        std::printf(" | %s: folds %d dist %.2g", name, n, std::sqrt(cp.squared_distance));
+      };
+      const auto kernel = FanKernelCenter(start, facing, opposite);
+      if (kernel) {
+        try_at("kernel", *kernel);
+        try_at("kernel-proj", bvh->ClosestPoint(*kernel).point);
+      } else {
+        std::printf(" | no kernel");
+      }
+      try_at("centroid", centroid);
+      try_at("centroid-proj", bvh->ClosestPoint(centroid).point);
+      std::printf("\n");
+    }
+  }
+  return 0;
+}
