@@ -1,8 +1,9 @@
 // Fold probe (developer tool): for every folded finest face of a remesh, what
 // single-vertex moves of its corners would do (kernel centre of the fan, on and
 // off the input; neighbour centroid), to see why the untangler left it.
-//   fold_probe INPUT REMESH.srm
+//   fold_probe INPUT REMESH.srm [LEVEL]   (default: the finest)
 #include <cstdio>
+#include <cstdlib>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -21,7 +22,9 @@ int main(int argc, char** argv) {
   auto srm = ReadSemiRegular(argv[2]);
   if (!input.ok() || !srm.ok()) return 1;
   auto bvh = TriangleBvh::Build(*input);
-  const auto& faces = srm->hierarchy.Faces(srm->hierarchy.levels());
+  const int level = argc > 3 ? std::atoi(argv[3]) : srm->hierarchy.levels();
+  if (level < 0 || level > srm->hierarchy.levels()) return 2;
+  const auto& faces = srm->hierarchy.Faces(level);
   std::vector<Vec3> pos = srm->positions;
   std::vector<std::vector<uint32_t>> inc(pos.size());
   for (uint32_t f = 0; f < faces.size(); ++f)
