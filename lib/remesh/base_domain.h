@@ -21,9 +21,10 @@
 //    triangles in the flat chart, not turn any face by more than ~80° in 3D, and
 //    not create a triangle that faces away from the input (the remesh's fold
 //    test, quality_checks.h), nor one whose input vertices face away from it.
-//  * Interior base vertices of valence 3 get an opposite edge flipped when
-//    that is valid (base_domain.cpp, RaiseValenceThree): at tips they seeded
-//    almost every fold the untangler could not remove.
+//  * Interior base vertices of valence 3 at tips (their faces' angles summing
+//    to under 200°) get an opposite edge flipped when that is valid
+//    (base_domain.cpp, RaiseValenceThree): they seeded almost every fold the
+//    untangler could not remove.
 //  * Boundary vertices (half-disc map) collapse only along their boundary, and
 //    input boundary vertices are kept exactly on base boundary edges.
 //  * No parameter smoothing (MAPS §3.4): Tutte smoothing of the base map, tried,
