@@ -2,6 +2,8 @@
 // single-vertex moves of its corners would do (kernel centre of the fan, on and
 // off the input; neighbour centroid), to see why the untangler left it.
 //   fold_probe INPUT REMESH.srm [LEVEL]   (default: the finest)
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <vector>
@@ -9,6 +11,7 @@
 #include <Eigen/Geometry>
 
 #include "mesh/mesh_io.h"
+#include "mesh/semi_regular.h"
 #include "mesh/semi_regular_io.h"
 #include "mesh/triangle_bvh.h"
 #include "remesh/fan_kernel.h"
@@ -54,6 +57,20 @@ int main(int argc, char** argv) {
     for (int d = 0; d < 16; ++d)
       if (histogram[d]) std::printf(" %d:%d", d, histogram[d]);
     std::printf("\n");
+    const Mesh base = ExtractLevel(*srm, 0);
+    for (uint32_t v = 0; v < valence.size(); ++v) {
+      if (valence[v] != 3) continue;
+      double angles = 0.0;
+      for (const Face& f : base.faces) {
+        for (int c = 0; c < 3; ++c) {
+          if (f[static_cast<size_t>(c)] != v) continue;
+          const Vec3 e1 = base.positions[f[static_cast<size_t>((c + 1) % 3)]] - base.positions[v];
+          const Vec3 e2 = base.positions[f[static_cast<size_t>((c + 2) % 3)]] - base.positions[v];
+          angles += std::acos(std::clamp(e1.normalized().dot(e2.normalized()), -1.0, 1.0));
+        }
+      }
+      std::printf("  valence-3 base vertex %u: angles sum to %.0f deg\n", v, angles * 180.0 / M_PI);
+    }
   }
   for (uint32_t f = 0; f < faces.size(); ++f) {
     if (!folded(f)) continue;
