@@ -60,15 +60,7 @@ int main(int argc, char** argv) {
     const Mesh base = ExtractLevel(*srm, 0);
     for (uint32_t v = 0; v < valence.size(); ++v) {
       if (valence[v] != 3) continue;
-      double angles = 0.0;
-      for (const Face& f : base.faces) {
-        for (int c = 0; c < 3; ++c) {
-          if (f[static_cast<size_t>(c)] != v) continue;
-          const Vec3 e1 = base.positions[f[static_cast<size_t>((c + 1) % 3)]] - base.positions[v];
-          const Vec3 e2 = base.positions[f[static_cast<size_t>((c + 2) % 3)]] - base.positions[v];
-          angles += std::acos(std::clamp(e1.normalized().dot(e2.normalized()), -1.0, 1.0));
-        }
-      }
+      const double angles = AngleSumAt(base, v);
       std::printf("  valence-3 base vertex %u: angles sum to %.0f deg\n", v, angles * 180.0 / M_PI);
     }
   }

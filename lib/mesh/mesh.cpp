@@ -67,4 +67,19 @@ std::vector<Vec3> VertexNormals(const Mesh& mesh) {
   return normals;
 }
 
+double CornerAngle(const Vec3& apex, const Vec3& a, const Vec3& b) {
+  const double cosine = (a - apex).normalized().dot((b - apex).normalized());
+  return std::acos(std::clamp(cosine, -1.0, 1.0));
+}
+
+double AngleSumAt(const Mesh& mesh, uint32_t v) {
+  double sum = 0.0;
+  for (const Face& f : mesh.faces) {
+    for (size_t c = 0; c < 3; ++c) {
+      if (f[c] == v) sum += CornerAngle(mesh.positions[v], mesh.positions[f[(c + 1) % 3]], mesh.positions[f[(c + 2) % 3]]);
+    }
+  }
+  return sum;
+}
+
 }  // namespace eqmesh

@@ -50,4 +50,12 @@ size_t CountReferencedVertices(const Mesh& mesh);
 // Area-weighted vertex normals (zero vector for isolated or degenerate fans).
 std::vector<Vec3> VertexNormals(const Mesh& mesh);
 
+// Angle at `apex` between its edges to a and b, in radians (pi/2 when an edge
+// has zero length).
+double CornerAngle(const Vec3& apex, const Vec3& a, const Vec3& b);
+
+// The corner angles at v of the faces using it, summed: 2 pi where an interior
+// vertex is flat, less at a tip. Scans every face.
+double AngleSumAt(const Mesh& mesh, uint32_t v);
+
 }  // namespace eqmesh

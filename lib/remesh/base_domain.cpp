@@ -789,9 +789,10 @@ double Simplifier::AngleSum(uint32_t v) const {
   for (uint32_t f : vfaces_[v]) {
     const Face& t = faces_[f];
     const size_t c = t[0] == v ? 0 : t[1] == v ? 1 : 2;
-    const Vec3 e1 = pos_[t[(c + 1) % 3]] - pos_[v], e2 = pos_[t[(c + 2) % 3]] - pos_[v];
-    if (!(e1.norm() > 0.0 && e2.norm() > 0.0)) return 2.0 * kPi;  // degenerate: no tip to speak of
-    angles += std::acos(std::clamp(e1.normalized().dot(e2.normalized()), -1.0, 1.0));
+    const Vec3& a = pos_[t[(c + 1) % 3]];
+    const Vec3& b = pos_[t[(c + 2) % 3]];
+    if (!((a - pos_[v]).norm() > 0.0 && (b - pos_[v]).norm() > 0.0)) return 2.0 * kPi;  // degenerate: no tip to speak of
+    angles += CornerAngle(pos_[v], a, b);
   }
   return angles;
 }
