@@ -67,6 +67,18 @@ struct QueueEntry {
   bool operator<(const QueueEntry& o) const { return cost > o.cost; }  // min-heap
 };
 
+// Round-off can leave a point a hair outside every triangle of a chart: its
+// barycentrics are clamped to the triangle (negative weights dropped, the rest
+// renormalised; the centroid when none is left).
+void ClampIntoTriangle(std::array<double, 3>* bary) {
+  double sum = 0.0;
+  for (double& w : *bary) {
+    w = std::max(0.0, w);
+    sum += w;
+  }
+  for (double& w : *bary) w = sum > 0.0 ? w / sum : 1.0 / 3.0;
+}
+
 double Quality(const Vec3& a, const Vec3& b, const Vec3& c) {
   const double denom = (b - a).squaredNorm() + (c - b).squaredNorm() + (a - c).squaredNorm();
   if (!(denom > 0.0)) return 0.0;
@@ -542,13 +554,7 @@ void Simplifier::PlaceInteriorItem(uint32_t x, const Vec2& q, uint32_t v, const 
       best_pp.bary = {b[0], b[1], b[2]};
     }
   }
-  // Round-off can leave a point a hair outside every triangle: clamp to the closest.
-  double sum = 0.0;
-  for (double& w : best_pp.bary) {
-    w = std::max(0.0, w);
-    sum += w;
-  }
-  for (double& w : best_pp.bary) w = sum > 0.0 ? w / sum : 1.0 / 3.0;
+  ClampIntoTriangle(&best_pp.bary);
   params_[x] = best_pp;
 }
 
@@ -772,12 +778,7 @@ void Simplifier::ApplyFlip(const Flip& k) {
         best_pp = {n == 0 ? k.f1 : k.f2, {w[0], w[1], w[2]}};
       }
     }
-    double sum = 0.0;
-    for (double& w : best_pp.bary) {
-      w = std::max(0.0, w);
-      sum += w;
-    }
-    for (double& w : best_pp.bary) w = sum > 0.0 ? w / sum : 1.0 / 3.0;
+    ClampIntoTriangle(&best_pp.bary);
     params_[items[i]] = best_pp;
     bucket_[best_pp.face].push_back(items[i]);
   }
@@ -817,6 +818,7 @@ void Simplifier::RaiseValenceThree() {
     if (AngleSum(v) >= kTipAngleSum) continue;
     std::optional<Flip> best;
     double best_error = std::numeric_limits<double>::infinity();
+    const std::vector<uint32_t> nv = Neighbours(v);
     for (uint32_t f1 : vfaces_[v]) {
       const Face& t = faces_[f1];
       const size_t c = t[0] == v ? 0 : t[1] == v ? 1 : 2;
@@ -828,7 +830,6 @@ void Simplifier::RaiseValenceThree() {
       }
       if (k.x == kNone || boundary_[k.a] || boundary_[k.b] || boundary_[k.x]) continue;
       if (vfaces_[k.a].size() < 5 || vfaces_[k.b].size() < 5 || vfaces_[k.x].size() >= kMaxValence) continue;
-      const std::vector<uint32_t> nv = Neighbours(v);
       if (std::binary_search(nv.begin(), nv.end(), k.x)) continue;
       const Vec3& pa = pos_[k.a];
       const Vec3& pb = pos_[k.b];
