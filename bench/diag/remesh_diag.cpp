@@ -229,7 +229,7 @@ int main(int argc, char** argv) {
   }
   // Folded faces one by one: is the centroid's closest input face on the other
   // side of a thin part (corners agree with the face, the centroid does not)?
-  const char* kind_letters = "BNnb";
+  const char* kind_names = "BNnb";
   for (size_t f = 0, shown = 0; f < fin.size() && static_cast<int>(shown) < list_folds; ++f) {
     if (!fin[f].folded) continue;
     ++shown;
@@ -247,13 +247,12 @@ int main(int argc, char** argv) {
                 c[0], c[1], c[2], std::sqrt(cc.squared_distance) / diag, n.dot(input_normal(cc.face)), longest / diag);
     for (int i = 0; i < 3; ++i) {
       const ClosestPointResult ci = bvh->ClosestPoint(p[i]);
-      std::printf(" [%c dist %.1g dot %.2f]", srm->kinds.empty() ? '?' : kind_letters[static_cast<int>(srm->kinds[face[i]])],
+      std::printf(" [%c dist %.1g dot %.2f]", srm->kinds.empty() ? '?' : kind_names[static_cast<int>(srm->kinds[face[i]])],
                   std::sqrt(ci.squared_distance) / diag, n.dot(input_normal(ci.face)));
     }
     std::printf("\n");
   }
   // Worst faces with their ancestry.
-  const char* kind_names = "BNnb";
   std::vector<Vec3> centres;
   for (int t = 0, i = 0; t < top && i < static_cast<int>(order.size()); ++i) {
     const size_t f = order[i];
