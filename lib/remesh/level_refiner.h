@@ -33,18 +33,19 @@ struct EdgeChoice {
   Vec3d u = Vec3d::Zero();  // parameter in the left face's chart
   VertexKind kind = VertexKind::kNonNormal;
   bool needs_forward = false;
+  uint32_t on_face = kNoFace;  // input triangle the position lies on, where known
 };
 
 class LevelRefiner {
  public:
   LevelRefiner(const SemiRegularHierarchy& h, int j, const InputSurface& s,
-               std::vector<Vec3>* positions, std::vector<ParamPoint>* params)
-      : h_(h), j_(j), s_(s), dom_(h, j), pos_(*positions), params_(*params) {
+               std::vector<Vec3>* positions, const std::vector<uint32_t>& on_faces, std::vector<ParamPoint>* params)
+      : h_(h), j_(j), s_(s), dom_(h, j), pos_(*positions), on_face_(on_faces), params_(*params) {
     fine_ = static_cast<double>(dom_.faces().size()) >= kFineLevelFaceRatio * static_cast<double>(s.mesh->faces.size());
   }
 
-  void Run(const StencilTable& stencils, std::vector<Vec3>* positions, std::vector<VertexKind>* kinds,
-           LevelStats* stats);
+  void Run(const StencilTable& stencils, std::vector<Vec3>* positions, std::vector<uint32_t>* on_faces,
+           std::vector<VertexKind>* kinds, LevelStats* stats);
   std::vector<ParamPoint> TakeParams() { return std::move(params_out_); }
 
  private:
@@ -58,12 +59,12 @@ class LevelRefiner {
   EdgeChoice BoundaryPoint(uint32_t k) const;
   bool InKite(const Vec3d& u, int slot) const;
   bool InDiamond(const Vec3d& u, int slot) const;
-  Vec3 MidpointPosition(uint32_t k, const Vec3d& u, Chart* chart) const;
+  Vec3 MidpointPosition(uint32_t k, const Vec3d& u, Chart* chart, uint32_t* on_face) const;
   Vec3d DiamondParam(uint32_t k, const Vec3& x) const;
-  Vec3 FineMidpoint(uint32_t k) const;
+  Vec3 FineMidpoint(uint32_t k, uint32_t* on_face) const;
   std::optional<RayHit> NearestHit(const Vec3& p, const Vec3& n, double reach) const;
   bool FacesAlong(uint32_t input_face, const Vec3& n) const;
-  Vec3 ForwardMap(uint32_t root, const Vec3d& u, const Vec3& fallback_near, Chart* chart) const;
+  Vec3 ForwardMap(uint32_t root, const Vec3d& u, const Vec3& fallback_near, Chart* chart, uint32_t* on_face) const;
   Vec3d EdgePointIn(uint32_t f, int i) const;
   bool ChildrenValid(uint32_t f) const;
   void DemoteInvalidFaces();
@@ -83,6 +84,8 @@ class LevelRefiner {
   double Lopsidedness(uint32_t k) const;
   PlacementScore ScorePlacement(uint32_t k) const;
   const Vec3& FinePosition(uint32_t v) const;
+  uint32_t FineFace(uint32_t v) const;
+  bool SurelyUnfolded(const Face& t, const Vec3& normal) const;
   bool Folded(uint32_t child, double* error = nullptr) const;
   std::array<uint32_t, 6> FacesAround(uint32_t k) const;
   size_t FoldsAround(uint32_t k, double* error = nullptr) const;
@@ -98,6 +101,7 @@ class LevelRefiner {
   const InputSurface& s_;
   const LevelDomain dom_;
   const std::vector<Vec3>& pos_;
+  const std::vector<uint32_t>& on_face_;  // of pos_
   const std::vector<ParamPoint>& params_;
   std::vector<uint32_t> bucket_offsets_, bucket_items_;
   std::vector<Vec3> predicted_;

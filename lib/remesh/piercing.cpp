@@ -6,6 +6,7 @@
 #include <cmath>
 #include <optional>
 
+#include "remesh/input_pleats.h"
 #include "remesh/level_domain.h"
 #include "remesh/level_refiner.h"
 #include "remesh/parallel_for.h"
@@ -31,6 +32,11 @@ constexpr size_t kMaxChartFaces = 4096;
 // (dragon_vrip, 1.8M new vertices: over 10 CPU minutes in one level). A miss
 // falls back to the closest input point.
 constexpr size_t kMaxFineForwardChartFaces = 256;
+// Rings of input triangles around a pleat where the fold scan always searches
+// (LevelRefiner::SurelyUnfolded). With 0 the scan already decided every face of
+// the bench meshes as the full search does; 1 is a margin (dragon_vrip, whose
+// scans overlap other components: 106 faces decided otherwise with 0, 80 with 1).
+constexpr int kPleatMarginRings = 1;
 
 double Quality2d(const Vec2& a, const Vec2& b, const Vec2& c) {
   const double denom = (b - a).squaredNorm() + (c - b).squaredNorm() + (a - c).squaredNorm();
@@ -101,6 +107,7 @@ std::vector<EdgeChoice> LevelRefiner::NormalCandidates(uint32_t k, Chart* chart,
     EdgeChoice c;
     c.position = p + (hit.t - reach) * n;
     c.kind = VertexKind::kNormal;
+    c.on_face = hit.face;
     if (SurfaceParam(k, c.position, hit.face, hit.barycentric, chart, &c.u) && InKite(c.u, sides.left_slot)) {
       out.push_back(c);
     }
@@ -135,8 +142,8 @@ bool LevelRefiner::InDiamond(const Vec3d& u, int slot) const {
 }
 
 // Surface point of a demoted midpoint of edge k at chart parameter u.
-Vec3 LevelRefiner::MidpointPosition(uint32_t k, const Vec3d& u, Chart* chart) const {
-  return fine_ ? FineMidpoint(k) : ForwardMap(dom_.Sides(k).left, u, predicted_[k], chart);
+Vec3 LevelRefiner::MidpointPosition(uint32_t k, const Vec3d& u, Chart* chart, uint32_t* on_face) const {
+  return fine_ ? FineMidpoint(k, on_face) : ForwardMap(dom_.Sides(k).left, u, predicted_[k], chart, on_face);
 }
 
 EdgeChoice LevelRefiner::MidpointChoice(uint32_t k) const {
@@ -185,14 +192,18 @@ Vec3d LevelRefiner::DiamondParam(uint32_t k, const Vec3& x) const {
 
 // Non-normal vertex on a level finer than the input: pierce from the edge's
 // 3D midpoint, else take the closest surface point to it.
-Vec3 LevelRefiner::FineMidpoint(uint32_t k) const {
+Vec3 LevelRefiner::FineMidpoint(uint32_t k, uint32_t* on_face) const {
   const Edge& e = h_.OddEdge(j_, k);
   const Vec3 m = 0.5 * (pos_[e[0]] + pos_[e[1]]);
   const Vec3& n = frames_[k].normal;
   const double reach = 0.5 * (pos_[e[0]] - pos_[e[1]]).norm();
   const std::optional<RayHit> hit = NearestHit(m, n, reach);
-  if (hit) return m + hit->t * n;
+  if (hit) {
+    *on_face = hit->face;
+    return m + hit->t * n;
+  }
   const ClosestPointResult cp = s_.bvh->ClosestPoint(m);
+  *on_face = cp.face;
   return cp.found() ? cp.point : m;
 }
 
@@ -251,7 +262,8 @@ EdgeChoice LevelRefiner::BoundaryPoint(uint32_t k) const {
 
 // Surface point at chart parameter u of face `root`: the input triangle whose
 // chart image contains u.
-Vec3 LevelRefiner::ForwardMap(uint32_t root, const Vec3d& u, const Vec3& fallback_near, Chart* chart) const {
+Vec3 LevelRefiner::ForwardMap(uint32_t root, const Vec3d& u, const Vec3& fallback_near, Chart* chart,
+                              uint32_t* on_face) const {
   chart->Reset(root);
   const Vec2 target = ToReference2d(u);
   double best = -1e300;
@@ -262,7 +274,8 @@ Vec3 LevelRefiner::ForwardMap(uint32_t root, const Vec3d& u, const Vec3& fallbac
     for (uint32_t n = bucket_offsets_[f]; n < bucket_offsets_[f + 1]; ++n) {
       const uint32_t x = bucket_items_[n];
       for (uint32_t q = s_.face_offsets[x]; q < s_.face_offsets[x + 1]; ++q) {
-        const Face& tri = s_.mesh->faces[s_.vertex_faces[q]];
+        const uint32_t input_face = s_.vertex_faces[q];
+        const Face& tri = s_.mesh->faces[input_face];
         Vec2 c2[3];
         bool mapped = true;
         for (int i = 0; i < 3 && mapped; ++i) {
@@ -274,6 +287,7 @@ Vec3 LevelRefiner::ForwardMap(uint32_t root, const Vec3d& u, const Vec3& fallbac
         if (!mapped || !ImageIsConsistent(c2) || !Barycentric2d(target, c2[0], c2[1], c2[2], &b)) continue;
         if (b.minCoeff() > best) {
           best = b.minCoeff();
+          *on_face = input_face;
           ClampBary(&b);
           best_point = b[0] * s_.mesh->positions[tri[0]] + b[1] * s_.mesh->positions[tri[1]] +
                        b[2] * s_.mesh->positions[tri[2]];
@@ -290,6 +304,7 @@ Vec3 LevelRefiner::ForwardMap(uint32_t root, const Vec3d& u, const Vec3& fallbac
   }
   if (best > -0.5) return best_point;
   const ClosestPointResult cp = s_.bvh->ClosestPoint(fallback_near);
+  *on_face = cp.face;
   return cp.found() ? cp.point : fallback_near;
 }
 
@@ -410,14 +425,14 @@ void LevelRefiner::ForwardMapDemoted() {
     for (size_t k = begin; k < end; ++k) {
       EdgeChoice& c = choice_[k];
       if (!c.needs_forward) continue;
-      c.position = MidpointPosition(static_cast<uint32_t>(k), c.u, &chart);
+      c.position = MidpointPosition(static_cast<uint32_t>(k), c.u, &chart, &c.on_face);
       c.needs_forward = false;
     }
   });
 }
 
-void LevelRefiner::Run(const StencilTable& stencils, std::vector<Vec3>* positions, std::vector<VertexKind>* kinds,
-                       LevelStats* stats) {
+void LevelRefiner::Run(const StencilTable& stencils, std::vector<Vec3>* positions, std::vector<uint32_t>* on_faces,
+                       std::vector<VertexKind>* kinds, LevelStats* stats) {
   BuildBuckets();
   ApplyStencils(stencils, pos_, &predicted_);
   frames_ = ComputeOddFrames(h_, j_, stencils, pos_);
@@ -432,6 +447,7 @@ void LevelRefiner::Run(const StencilTable& stencils, std::vector<Vec3>* position
   stats->folded_faces = RepairPlacements();
   for (const EdgeChoice& c : choice_) {
     positions->push_back(c.position);
+    on_faces->push_back(c.on_face);
     kinds->push_back(c.kind);
   }
   std::vector<ParamPoint> next(params_.size());
@@ -487,15 +503,17 @@ InputSurface::InputSurface(const Mesh& m, const TriangleBvh& b, std::vector<uint
     const Vec3 n = (m.positions[f[1]] - m.positions[f[0]]).cross(m.positions[f[2]] - m.positions[f[0]]);
     for (uint32_t v : f) normals[v] += n;
   }
+  near_pleat = FacesNearPleats(m, face_offsets, vertex_faces, remesh_internal::kPleatMarginRings);
 }
 
 void RefineLevel(const SemiRegularHierarchy& hierarchy, int j, const InputSurface& surface,
-                 const StencilTable& stencils, std::vector<Vec3>* positions, std::vector<VertexKind>* kinds,
-                 std::vector<ParamPoint>* params, LevelStats* stats) {
+                 const StencilTable& stencils, std::vector<Vec3>* positions, std::vector<uint32_t>* on_faces,
+                 std::vector<VertexKind>* kinds, std::vector<ParamPoint>* params, LevelStats* stats) {
   *stats = LevelStats();
   std::vector<Vec3> level = *positions;
-  remesh_internal::LevelRefiner refiner(hierarchy, j, surface, &level, params);
-  refiner.Run(stencils, positions, kinds, stats);
+  const std::vector<uint32_t> level_faces = *on_faces;
+  remesh_internal::LevelRefiner refiner(hierarchy, j, surface, &level, level_faces, params);
+  refiner.Run(stencils, positions, on_faces, kinds, stats);
   *params = refiner.TakeParams();
 }
 

@@ -53,6 +53,7 @@ struct InputSurface {
   std::vector<uint32_t> face_offsets;   // vertex -> incident faces (CSR)
   std::vector<uint32_t> vertex_faces;
   std::vector<Vec3> normals;            // area-weighted vertex normals (not unit)
+  std::vector<uint8_t> near_pleat;      // per input face: FacesNearPleats
 
   InputSurface(const Mesh& m, const TriangleBvh& b, std::vector<uint8_t> boundary);
 };
@@ -64,11 +65,14 @@ struct LevelStats {
 
 // `hierarchy` must have at least j+1 levels. `positions` holds level-j positions
 // on entry and level-(j+1) positions on return; `kinds` gets the odd vertices'
-// kinds appended; `params` (one per input vertex) moves from level j to j+1.
+// kinds appended; `on_faces` runs alongside `positions`: the input triangle each
+// vertex lies on (kNoFace where not known), which lets the fold scan skip the
+// input search for faces that plainly agree with the surface under their corners.
+// `params` (one per input vertex) moves from level j to j+1.
 // `stencils`: BuildButterflyStencils(hierarchy, j), built by the caller so the
 // untangling can reuse it (StencilCache).
 void RefineLevel(const SemiRegularHierarchy& hierarchy, int j, const InputSurface& surface,
-                 const StencilTable& stencils, std::vector<Vec3>* positions, std::vector<VertexKind>* kinds,
-                 std::vector<ParamPoint>* params, LevelStats* stats);
+                 const StencilTable& stencils, std::vector<Vec3>* positions, std::vector<uint32_t>* on_faces,
+                 std::vector<VertexKind>* kinds, std::vector<ParamPoint>* params, LevelStats* stats);
 
 }  // namespace eqmesh

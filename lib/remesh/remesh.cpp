@@ -159,6 +159,7 @@ bool StopRefining(const RemeshOptions& options, int levels_done, const std::vect
 struct Refinement {
   SemiRegularHierarchy hierarchy;
   std::vector<Vec3> positions;
+  std::vector<uint32_t> on_faces;  // input triangle under each position (piercing.h)
   std::vector<VertexKind> kinds;
   int levels = 0;
   std::vector<double> estimated_psnr_db_per_level;
@@ -195,7 +196,11 @@ struct RefineContext {
 StatusOr<Refinement> RefineAllLevels(const RefineContext& c) {
   Refinement r;
   const uint32_t nb = static_cast<uint32_t>(c.base.base_to_input.size());
-  for (uint32_t v : c.base.base_to_input) r.positions.push_back(c.surface_mesh.positions[v]);
+  for (uint32_t v : c.base.base_to_input) {
+    r.positions.push_back(c.surface_mesh.positions[v]);
+    const bool has_face = c.surface.face_offsets[v] < c.surface.face_offsets[v + 1];
+    r.on_faces.push_back(has_face ? c.surface.vertex_faces[c.surface.face_offsets[v]] : kNoFace);
+  }
   r.kinds.assign(nb, VertexKind::kBase);
   std::vector<ParamPoint> params = c.base.params;
   // One level at a time (Refine gives what Build would), so no level is built twice.
@@ -208,7 +213,8 @@ StatusOr<Refinement> RefineAllLevels(const RefineContext& c) {
     ReportProgress(c.options.progress, std::string("pierce level ") + std::to_string(r.levels + 1), 0.0);
     LevelStats stats;
     r.stencils.push_back(BuildButterflyStencils(r.hierarchy, r.levels));
-    RefineLevel(r.hierarchy, r.levels, c.surface, r.stencils.back(), &r.positions, &r.kinds, &params, &stats);
+    RefineLevel(r.hierarchy, r.levels, c.surface, r.stencils.back(), &r.positions, &r.on_faces, &r.kinds, &params,
+                &stats);
     r.estimated_psnr_db_per_level.push_back(EstimatedPsnrDb(c.diagonal, stats.rms_error));
     r.finest_folded_faces = std::move(stats.folded_faces);
     ++r.levels;
