@@ -46,6 +46,35 @@ int main(int argc, char** argv) {
     const Face& g = input->faces[cp.face];
     return Vec3((input->positions[g[1]] - input->positions[g[0]]).cross(input->positions[g[2]] - input->positions[g[0]]).normalized());
   };
+  std::vector<std::vector<uint32_t>> input_inc(input->positions.size());
+  for (uint32_t g = 0; g < input->faces.size(); ++g)
+    for (uint32_t v : input->faces[g]) input_inc[v].push_back(g);
+  auto face_normal = [&](uint32_t g) {
+    const Face& t = input->faces[g];
+    const auto& x = input->positions;
+    return Vec3((x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]));
+  };
+  // Whether the input face under a folded face's centroid is itself part of a
+  // pleat of the input (a vertex-neighbour facing more than 90 degrees away),
+  // and how the folded face sits against the input's area-weighted normal
+  // around it: a fold over a pleat faces away from one sheet of it only.
+  auto describe_input_under = [&](uint32_t f) {
+    const Face& t = faces[f];
+    const Vec3 n = (pos[t[1]] - pos[t[0]]).cross(pos[t[2]] - pos[t[0]]).normalized();
+    const ClosestPointResult cp = bvh->ClosestPoint((pos[t[0]] + pos[t[1]] + pos[t[2]]) / 3.0);
+    const Vec3 m = face_normal(cp.face).normalized();
+    double worst = 1.0;
+    Vec3 around = Vec3::Zero();
+    for (uint32_t v : input->faces[cp.face]) {
+      for (uint32_t g : input_inc[v]) {
+        worst = std::min(worst, m.dot(face_normal(g).normalized()));
+        around += face_normal(g);
+      }
+    }
+    std::printf("  input face %u under it: face cos %.3f, its least neighbour cos %.3f (%s), 1-ring normal cos %.3f, dist %.2g\n",
+                cp.face, n.dot(m), worst, worst < 0.0 ? "pleat" : "no pleat", n.dot(around.normalized()),
+                std::sqrt(cp.squared_distance));
+  };
   const char* kinds = "BNnb";
   {
     std::vector<int> valence(srm->hierarchy.NumVertices(0), 0);
@@ -67,6 +96,7 @@ int main(int argc, char** argv) {
   for (uint32_t f = 0; f < faces.size(); ++f) {
     if (!folded(f)) continue;
     std::printf("face %u\n", f);
+    describe_input_under(f);
     for (uint32_t v : faces[f]) {
       const Vec3 start = pos[v];
       const Vec3 facing = input_normal(start);
