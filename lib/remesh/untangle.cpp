@@ -11,7 +11,6 @@
 #include "mesh/mesh_topology.h"
 #include "remesh/face_incidence.h"
 #include "remesh/fan_kernel.h"
-#include "remesh/parallel_for.h"
 #include "remesh/patch_flattening.h"
 #include "remesh/quality_checks.h"
 #include "remesh/stencil_cache.h"
@@ -51,10 +50,6 @@ constexpr size_t kMaxClusterVertices = 512;
 constexpr double kMinNormalShare = 0.90;
 // Rounds of MoveCornersOfNewFolds, each seeded with what still folds.
 constexpr int kCleanupRounds = 4;
-// Clusters' face scores run on several threads from this many faces per thread.
-constexpr size_t kMinParallelFaces = 128;
-// and their vertices' surface queries from this many vertices per thread.
-constexpr size_t kMinParallelVertices = 64;
 
 // Edges of `mesh` that only one face uses (its boundary curves), by (min, max).
 std::vector<Edge> InputBoundaryEdges(const Mesh& mesh) {
@@ -97,12 +92,6 @@ struct Untangler {
 
   bool Folded(uint32_t f, double* error) const {
     if (work_left > 0) --work_left;
-    return FoldedUncounted(f, error);
-  }
-
-  // Folded without spending work_left, which a caller running it on several
-  // threads settles afterwards.
-  bool FoldedUncounted(uint32_t f, double* error) const {
     const Face& t = faces[f];
     // A degenerate face is as bad as a folded one (the bench counts both).
     return FoldedOrDegenerate(*surface.bvh, *surface.mesh, pos[t[0]], pos[t[1]], pos[t[2]], degenerate_double_area,
@@ -370,26 +359,10 @@ struct Untangler {
     return around;
   }
 
-  // Folds and error of `around` (the faces around a cluster). Every sweep of a
-  // cluster scores all of them, serially the untangler's largest cost: the
-  // faces are tested in parallel, and their errors then added in face order so
-  // the sum is the serial one, bit for bit.
+  // Folds and error of `around` (the faces around a cluster).
   std::pair<size_t, double> FacesScore(const std::vector<uint32_t>& around) const {
-    std::vector<double> errors(around.size(), 0.0);
-    std::vector<uint8_t> folds(around.size(), 0);
-    ParallelFor(around.size(), [&](size_t begin, size_t end, size_t) {
-      for (size_t i = begin; i < end; ++i) {
-        double e = 0.0;
-        folds[i] = FoldedUncounted(around[i], &e);
-        errors[i] = e;
-      }
-    }, kMinParallelFaces);
-    work_left -= std::min(work_left, around.size());
     std::pair<size_t, double> s{0, 0.0};
-    for (size_t i = 0; i < around.size(); ++i) {
-      s.first += folds[i];
-      s.second += errors[i];
-    }
+    for (uint32_t f : around) s.first += Folded(f, &s.second);
     return s;
   }
 
@@ -413,35 +386,19 @@ struct Untangler {
     for (uint32_t v : cluster) best.push_back(pos[v]);
     std::pair<size_t, double> best_score = before;
     const int sweeps = to_kernel ? kKernelIterations : kClusterIterations;
-    std::vector<Vec3> facing(cluster.size());
     for (int it = 0, stalled = 0; it < sweeps && best_score.first > 0 && stalled < kStallSweeps && work_left > 0;
          ++it) {
-      // The input's orientation where each vertex is now (a sweep may carry it
-      // over a crease). A sweep moves each vertex once, so this is where it
-      // stands when its turn comes, in either kind of sweep.
-      ParallelFor(cluster.size(), [&](size_t begin, size_t end, size_t) {
-        for (size_t i = begin; i < end; ++i) facing[i] = InputNormal(cluster[i]);
-      }, kMinParallelVertices);
-      if (to_kernel) {
-        // In place (Gauss-Seidel): each centre needs the neighbours' latest
-        // positions to untangle a multi-vertex fold.
-        for (size_t i = 0; i < cluster.size(); ++i) {
-          const uint32_t v = cluster[i];
-          std::optional<Vec3> aim;
-          if (kinds[v] != VertexKind::kBoundary) aim = KernelCentre(v, facing[i]);
-          const std::optional<Vec3> moved = Candidate(v, aim ? *aim : NeighbourCentroid(v), facing[i], 1.0, false);
-          next[i] = moved ? *moved : pos[v];
-          pos[v] = next[i];
-        }
-      } else {
-        // Jacobi: every vertex from the positions before the sweep.
-        ParallelFor(cluster.size(), [&](size_t begin, size_t end, size_t) {
-          for (size_t i = begin; i < end; ++i) {
-            const uint32_t v = cluster[i];
-            const std::optional<Vec3> moved = Candidate(v, NeighbourCentroid(v), facing[i], 1.0, false);
-            next[i] = moved ? *moved : pos[v];
-          }
-        }, kMinParallelVertices);
+      for (size_t i = 0; i < cluster.size(); ++i) {
+        const uint32_t v = cluster[i];
+        // The input's orientation where v is now (a sweep may carry it over a crease).
+        const Vec3 facing = InputNormal(v);
+        std::optional<Vec3> aim;
+        if (to_kernel && kinds[v] != VertexKind::kBoundary) aim = KernelCentre(v, facing);
+        const std::optional<Vec3> moved = Candidate(v, aim ? *aim : NeighbourCentroid(v), facing, 1.0, false);
+        next[i] = moved ? *moved : pos[v];
+        // Kernel sweeps run in place (Gauss-Seidel): each centre needs the
+        // neighbours' latest positions to untangle a multi-vertex fold.
+        if (to_kernel) pos[v] = next[i];
       }
       for (size_t i = 0; i < cluster.size(); ++i) pos[cluster[i]] = next[i];
       const std::pair<size_t, double> score = FacesScore(around);
