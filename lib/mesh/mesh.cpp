@@ -67,6 +67,14 @@ std::vector<Vec3> VertexNormals(const Mesh& mesh) {
   return normals;
 }
 
+std::vector<Vec3> FaceCrossProducts(const Mesh& mesh) {
+  std::vector<Vec3> out;
+  out.reserve(mesh.faces.size());
+  const std::vector<Vec3>& x = mesh.positions;
+  for (const Face& f : mesh.faces) out.push_back((x[f[1]] - x[f[0]]).cross(x[f[2]] - x[f[0]]));
+  return out;
+}
+
 double CornerAngle(const Vec3& apex, const Vec3& a, const Vec3& b) {
   const double cosine = (a - apex).normalized().dot((b - apex).normalized());
   return std::acos(std::clamp(cosine, -1.0, 1.0));

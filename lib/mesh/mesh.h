@@ -50,6 +50,9 @@ size_t CountReferencedVertices(const Mesh& mesh);
 // Area-weighted vertex normals (zero vector for isolated or degenerate fans).
 std::vector<Vec3> VertexNormals(const Mesh& mesh);
 
+// (b - a) x (c - a) of every face (a, b, c): its normal times twice its area.
+std::vector<Vec3> FaceCrossProducts(const Mesh& mesh);
+
 // Angle at `apex` between its edges to a and b, in radians (pi/2 when an edge
 // has zero length).
 double CornerAngle(const Vec3& apex, const Vec3& a, const Vec3& b);

@@ -1,18 +1,8 @@
 // Pleats of the input surface (input_pleats.h).
 #include "remesh/input_pleats.h"
 
-#include <Eigen/Geometry>
-
 namespace eqmesh {
 namespace {
-
-std::vector<Vec3> FaceNormals(const Mesh& mesh) {
-  std::vector<Vec3> normals;
-  normals.reserve(mesh.faces.size());
-  const std::vector<Vec3>& x = mesh.positions;
-  for (const Face& f : mesh.faces) normals.push_back((x[f[1]] - x[f[0]]).cross(x[f[2]] - x[f[0]]));
-  return normals;
-}
 
 // Adds to `out` the faces sharing a vertex with a face flagged in `in`.
 void GrowByOneRing(const Mesh& mesh, const std::vector<uint32_t>& face_offsets,
@@ -28,14 +18,14 @@ void GrowByOneRing(const Mesh& mesh, const std::vector<uint32_t>& face_offsets,
 
 }  // namespace
 
-std::vector<uint8_t> FacesNearPleats(const Mesh& mesh, const std::vector<uint32_t>& face_offsets,
+std::vector<uint8_t> FacesNearPleats(const Mesh& mesh, const std::vector<Vec3>& face_normals,
+                                     const std::vector<uint32_t>& face_offsets,
                                      const std::vector<uint32_t>& vertex_faces, int rings) {
-  const std::vector<Vec3> normals = FaceNormals(mesh);
   std::vector<uint8_t> near(mesh.faces.size(), 0);
   for (uint32_t f = 0; f < mesh.faces.size(); ++f) {
     for (uint32_t v : mesh.faces[f]) {
       for (uint32_t q = face_offsets[v]; q < face_offsets[v + 1] && !near[f]; ++q) {
-        near[f] = normals[f].dot(normals[vertex_faces[q]]) < 0.0;
+        near[f] = face_normals[f].dot(face_normals[vertex_faces[q]]) < 0.0;
       }
     }
   }

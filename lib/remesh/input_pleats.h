@@ -15,8 +15,10 @@ namespace eqmesh {
 // input at its centroid although the input under each of its corners faces its
 // way. Flags every triangle with a vertex-neighbour facing away from it, then
 // every triangle within `rings` vertex-rings of one flagged so.
-// `face_offsets` / `vertex_faces`: vertex -> incident faces (CSR).
-std::vector<uint8_t> FacesNearPleats(const Mesh& mesh, const std::vector<uint32_t>& face_offsets,
+// `face_normals`: FaceCrossProducts(mesh); `face_offsets` / `vertex_faces`:
+// vertex -> incident faces (CSR).
+std::vector<uint8_t> FacesNearPleats(const Mesh& mesh, const std::vector<Vec3>& face_normals,
+                                     const std::vector<uint32_t>& face_offsets,
                                      const std::vector<uint32_t>& vertex_faces, int rings);
 
 }  // namespace eqmesh

@@ -219,9 +219,7 @@ std::optional<RayHit> LevelRefiner::NearestHit(const Vec3& p, const Vec3& n, dou
 }
 
 bool LevelRefiner::FacesAlong(uint32_t input_face, const Vec3& n) const {
-  const Face& g = s_.mesh->faces[input_face];
-  const std::vector<Vec3>& x = s_.mesh->positions;
-  return (x[g[1]] - x[g[0]]).cross(x[g[2]] - x[g[0]]).dot(n) > 0.0;
+  return s_.face_normals[input_face].dot(n) > 0.0;
 }
 
 // Boundary edge: the parametric midpoint of the input boundary polyline between
@@ -498,12 +496,12 @@ InputSurface::InputSurface(const Mesh& m, const TriangleBvh& b, std::vector<uint
   for (uint32_t f = 0; f < m.faces.size(); ++f) {
     for (uint32_t v : m.faces[f]) vertex_faces[fill[v]++] = f;
   }
+  face_normals = FaceCrossProducts(m);
   normals.assign(m.positions.size(), Vec3::Zero());
-  for (const Face& f : m.faces) {
-    const Vec3 n = (m.positions[f[1]] - m.positions[f[0]]).cross(m.positions[f[2]] - m.positions[f[0]]);
-    for (uint32_t v : f) normals[v] += n;
+  for (uint32_t f = 0; f < m.faces.size(); ++f) {
+    for (uint32_t v : m.faces[f]) normals[v] += face_normals[f];
   }
-  near_pleat = FacesNearPleats(m, face_offsets, vertex_faces, remesh_internal::kPleatMarginRings);
+  near_pleat = FacesNearPleats(m, face_normals, face_offsets, vertex_faces, remesh_internal::kPleatMarginRings);
 }
 
 void RefineLevel(const SemiRegularHierarchy& hierarchy, int j, const InputSurface& surface,

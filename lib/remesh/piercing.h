@@ -52,6 +52,7 @@ struct InputSurface {
   std::vector<uint8_t> is_boundary;     // per input vertex
   std::vector<uint32_t> face_offsets;   // vertex -> incident faces (CSR)
   std::vector<uint32_t> vertex_faces;
+  std::vector<Vec3> face_normals;       // FaceCrossProducts (not unit)
   std::vector<Vec3> normals;            // area-weighted vertex normals (not unit)
   std::vector<uint8_t> near_pleat;      // per input face: FacesNearPleats
 

@@ -75,12 +75,10 @@ uint32_t LevelRefiner::FineFace(uint32_t v) const {
 // bench/README_remesh.md).
 bool LevelRefiner::SurelyUnfolded(const Face& t, const Vec3& normal) const {
   if (!fine_) return false;
-  const std::vector<Vec3>& x = s_.mesh->positions;
   for (uint32_t v : t) {
     const uint32_t f = FineFace(v);
     if (f == kNoFace || s_.near_pleat[f]) return false;
-    const Face& g = s_.mesh->faces[f];
-    const Vec3 m = (x[g[1]] - x[g[0]]).cross(x[g[2]] - x[g[0]]);
+    const Vec3& m = s_.face_normals[f];
     if (!(normal.dot(m) > kSureAgreement * normal.norm() * m.norm())) return false;
   }
   return true;

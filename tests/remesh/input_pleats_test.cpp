@@ -55,7 +55,7 @@ TEST(InputPleats, SmoothInputHasNone) {
   // A gentle bump: neighbouring faces stay far from 90 degrees apart.
   for (Vec3& p : m.positions) p.z() = 0.3 * std::sin(0.5 * p.x()) * std::cos(0.5 * p.y());
   const Incidence inc = VertexFaces(m);
-  EXPECT_EQ(CountFlagged(FacesNearPleats(m, inc.offsets, inc.faces, 2)), 0u);
+  EXPECT_EQ(CountFlagged(FacesNearPleats(m, FaceCrossProducts(m), inc.offsets, inc.faces, 2)), 0u);
 }
 
 TEST(InputPleats, FoldedOverVertexFlagsItsStarAndTheRingsAround) {
@@ -64,8 +64,8 @@ TEST(InputPleats, FoldedOverVertexFlagsItsStarAndTheRingsAround) {
   const uint32_t centre = 4 * 9 + 4;
   m.positions[centre] = Vec3(6.5, 4.2, 0.05);
   const Incidence inc = VertexFaces(m);
-  const std::vector<uint8_t> near0 = FacesNearPleats(m, inc.offsets, inc.faces, 0);
-  const std::vector<uint8_t> near1 = FacesNearPleats(m, inc.offsets, inc.faces, 1);
+  const std::vector<uint8_t> near0 = FacesNearPleats(m, FaceCrossProducts(m), inc.offsets, inc.faces, 0);
+  const std::vector<uint8_t> near1 = FacesNearPleats(m, FaceCrossProducts(m), inc.offsets, inc.faces, 1);
   // Every face of the folded star is flagged, faces far away are not.
   for (uint32_t q = inc.offsets[centre]; q < inc.offsets[centre + 1]; ++q) EXPECT_TRUE(near0[inc.faces[q]]);
   const uint32_t far_corner = 0;  // vertex (0, 0)
