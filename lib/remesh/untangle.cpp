@@ -382,7 +382,8 @@ struct Untangler {
   // the error (or the floor).
   bool SmoothCluster(const std::vector<uint32_t>& cluster, bool to_kernel) {
     if (cluster.size() > kMaxClusterVertices || work_left == 0) return false;
-    std::pair<std::vector<uint64_t>, bool> key{SweepInput(cluster), to_kernel};
+    const std::vector<uint32_t> around = FacesAround(cluster);
+    std::pair<std::vector<uint64_t>, bool> key{SweepInput(cluster, around), to_kernel};
     const auto known = failed_sweeps.find(key);
     // Only a sweep the budget did not cut short is replayed, and only where it
     // would not be cut short now.
@@ -391,17 +392,17 @@ struct Untangler {
       return false;
     }
     const size_t work_before = work_left;
-    const bool improved = SweepCluster(cluster, to_kernel);
+    const bool improved = SweepCluster(cluster, around, to_kernel);
     if (!improved && work_left > 0) failed_sweeps.emplace(std::move(key), work_before - work_left);
     return improved;
   }
 
   // What a cluster sweep depends on besides the input: the cluster and every
-  // vertex of the faces around it, with its position bit for bit.
-  std::vector<uint64_t> SweepInput(const std::vector<uint32_t>& cluster) const {
+  // vertex of the faces around it (`around`), with its position bit for bit.
+  std::vector<uint64_t> SweepInput(const std::vector<uint32_t>& cluster, const std::vector<uint32_t>& around) const {
     std::vector<uint64_t> key(cluster.begin(), cluster.end());
     key.push_back(~uint64_t{0});  // separates the two parts
-    for (uint32_t f : FacesAround(cluster)) {
+    for (uint32_t f : around) {
       for (uint32_t v : faces[f]) {
         key.push_back(v);
         for (int k = 0; k < 3; ++k) {
@@ -414,9 +415,8 @@ struct Untangler {
     return key;
   }
 
-  // SmoothCluster's sweeps, always run.
-  bool SweepCluster(const std::vector<uint32_t>& cluster, bool to_kernel) {
-    const std::vector<uint32_t> around = FacesAround(cluster);
+  // SmoothCluster's sweeps, always run; `around`: FacesAround(cluster).
+  bool SweepCluster(const std::vector<uint32_t>& cluster, const std::vector<uint32_t>& around, bool to_kernel) {
     const std::pair<size_t, double> before = FacesScore(around);
     if (before.first == 0) return false;
     double floor = 0.0;
