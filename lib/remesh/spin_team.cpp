@@ -82,18 +82,23 @@ void SpinTeam::Work(int worker) {
   for (size_t i = next_.fetch_add(1); i < n_; i = next_.fetch_add(1)) (*fn_)(i, worker);
 }
 
+// Stop is part of the wake-up condition, not only of the answer: a helper that
+// read `seen` after the destructor's batch_ increment (it returned from its last
+// wait just before stop_ was set) would otherwise wait for a batch that never
+// comes, and the destructor's join would hang (seen once in ctest -j2, session 13).
 bool SpinTeam::WaitForBatch(uint64_t seen) {
+  const auto ready = [&] { return stop_.load() || batch_.load(std::memory_order_acquire) != seen; };
   for (int round = 0; round < kSpinRounds; ++round) {
-    if (batch_.load(std::memory_order_acquire) != seen) return !stop_.load();
+    if (ready()) return !stop_.load();
     CpuRelax();
   }
   for (int round = 0; round < kYieldRounds; ++round) {
-    if (batch_.load(std::memory_order_acquire) != seen) return !stop_.load();
+    if (ready()) return !stop_.load();
     std::this_thread::yield();
   }
   std::unique_lock<std::mutex> guard(sleep_lock_);
   sleepers_.fetch_add(1);
-  wake_.wait(guard, [&] { return batch_.load() != seen; });
+  wake_.wait(guard, ready);
   sleepers_.fetch_sub(1);
   return !stop_.load();
 }

@@ -57,6 +57,27 @@ TEST(SpinTeam, OversubscribedBatchesStillCallEveryIndexOnce) {
   for (std::thread& t : busy) t.join();
 }
 
+// A team destroyed right after a batch, while its helpers are still on their way
+// back from it: none may miss the stop and wait for a batch that never comes (the
+// destructor's join hung once in ctest -j2). Oversubscribed, so that a helper is
+// often descheduled between seeing a batch and reading its number.
+TEST(SpinTeam, DestroyedRightAfterABatchNeverHangs) {
+  std::atomic<bool> stop{false};
+  std::vector<std::thread> busy;
+  const unsigned cores = std::max(2u, std::thread::hardware_concurrency());
+  for (unsigned k = 0; k < cores; ++k) {
+    busy.emplace_back([&stop] {
+      while (!stop.load(std::memory_order_relaxed)) std::this_thread::yield();
+    });
+  }
+  for (int round = 0; round < 3000; ++round) {
+    SpinTeam team(3);
+    ExpectEachIndexOnce(&team, static_cast<size_t>(2 + round % 5));
+  }
+  stop = true;
+  for (std::thread& t : busy) t.join();
+}
+
 TEST(SpinTeam, OneWorkerRunsInline) {
   SpinTeam team(1);
   EXPECT_EQ(team.workers(), 1);
