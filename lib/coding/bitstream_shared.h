@@ -2,7 +2,7 @@
 // pattern). The values are part of the format: NEVER renumber or reuse one; add new
 // values at the end and bump kVersionMinor (compatible addition) or kVersionMajor.
 //
-// Stream layout, version 1.2 (all multi-byte integers little endian; "varint" is
+// Stream layout, version 1.3 (all multi-byte integers little endian; "varint" is
 // unsigned LEB128, "svarint" zig-zag LEB128; ext_spec/ restates this normatively):
 //
 //   magic            4 bytes  "EQMS"
@@ -27,7 +27,8 @@
 //                    Draco mesh buffer. Its vertex order defines base vertex numbering.
 //   kept chunk       Draco mesh buffer of SemiRegularMesh::kept_exactly.
 //   level chunks     opaque to the container; for kCoderEq one EqLevel chunk each
-//                    (lib/coding/eq), decoded against the hierarchy level layout;
+//                    (lib/coding/eq), decoded against the hierarchy level layout,
+//                    with context-modelled tangential parts when kTangentialContext;
 //                    for kZerotree (since 1.1) chunk 0 is ONE embedded payload of
 //                    all levels (zerotree_levels.h) and chunks 1..J-1 are empty.
 //
@@ -42,7 +43,8 @@ namespace eqmesh::bitstream {
 
 constexpr uint8_t kMagic[4] = {'E', 'Q', 'M', 'S'};
 constexpr uint8_t kVersionMajor = 1;
-constexpr uint8_t kVersionMinor = 2;  // 1.1: coder 1 (zerotree); 1.2: kCompactBase
+constexpr uint8_t kVersionMinor = 3;  // 1.1: coder 1 (zerotree); 1.2: kCompactBase;
+                                      // 1.3: kTangentialContext
 
 // Wavelet transform the level chunks are expressed in. Pinned values.
 enum class TransformId : uint8_t {
@@ -62,8 +64,9 @@ constexpr uint8_t kMaxCoderId = 2;
 enum HeaderFlag : uint8_t {
   kHasKeptExactly = 1u << 0,  // a kept-exactly chunk follows the base chunk
   kCompactBase = 1u << 1,     // the base chunk is a compact chunk, not Draco (1.2)
+  kTangentialContext = 1u << 2,  // EQ chunks context-model tangential parts (1.3; coder kEq only)
 };
-constexpr uint8_t kKnownFlags = kHasKeptExactly | kCompactBase;
+constexpr uint8_t kKnownFlags = kHasKeptExactly | kCompactBase | kTangentialContext;
 
 // lambda and the tangential factor travel as log2 codes in 1/kLogCodeScale steps;
 // the encoder codes with the value the decoder will rebuild from the code.

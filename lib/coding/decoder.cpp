@@ -25,6 +25,7 @@ StreamInfo MakeStreamInfo(const StreamHeader& h, size_t header_size) {
   s.quantum = h.quantum;
   s.has_kept_exactly = h.has_kept();
   s.has_compact_base = h.has_compact_base();
+  s.has_tangential_context = h.has_tangential_context();
   s.header_size = header_size;
   s.base_offset = header_size;
   s.base_size = h.base_size;
@@ -87,7 +88,8 @@ StatusOr<Mesh> DecodeKept(const uint8_t* data, const StreamInfo& s) {
 // once chunk j has passed DecodeLevelCoefficients' size checks.
 Status DecodeLevels(const uint8_t* data, const StreamInfo& s, const StreamHeader& h, int levels,
                     SemiRegularMesh* mesh) {
-  const LevelCodingParams params{h.coder, h.lambda_code, h.lambda(), h.tangential_factor(), h.quantum};
+  const LevelCodingParams params{h.coder,  h.lambda_code, h.lambda(), h.tangential_factor(),
+                                 h.quantum, h.has_tangential_context()};
   for (int j = 0; j < levels; ++j) {
     const Status refined = mesh->hierarchy.Refine(bitstream::kMaxFinestFaces);
     if (!refined.ok()) return refined.WithContext("eqm base mesh chunk");

@@ -56,6 +56,7 @@ struct StreamInfo {
   double quantum = 0;
   bool has_kept_exactly = false;
   bool has_compact_base = false;  // base chunk is a compact chunk (1.2), not Draco
+  bool has_tangential_context = false;  // EQ tangential parts context-modelled (1.3)
   uint64_t header_size = 0;
   uint64_t base_offset = 0, base_size = 0;
   uint64_t kept_offset = 0, kept_size = 0;  // size 0 when absent

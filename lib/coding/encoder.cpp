@@ -179,6 +179,9 @@ StreamHeader MakeHeader(const Prepared& prep, const EncodeOptions& options, int6
   header.lambda_code = code;
   header.tangential_code = LogCode(options.tangential_factor);
   header.quantum = prep.quantum;
+  if (options.coder == bitstream::CoderId::kEq && options.eq_tangential_context) {
+    header.flags |= bitstream::kTangentialContext;
+  }
   return header;
 }
 
@@ -211,8 +214,12 @@ Pass FinishPass(StreamHeader header, const Prepared& prep, const MeshChunkEncodi
 StatusOr<Pass> EncodeAtCode(const Prepared& prep, const EncodeOptions& options, int64_t code,
                             std::deque<Renumbered>* cache) {
   const StreamHeader header = MakeHeader(prep, options, code);
-  const LevelCodingParams params{options.coder, code, header.lambda(), header.tangential_factor(),
-                                 static_cast<double>(header.quantum)};
+  const LevelCodingParams params{options.coder,
+                                 code,
+                                 header.lambda(),
+                                 header.tangential_factor(),
+                                 static_cast<double>(header.quantum),
+                                 header.has_tangential_context()};
   BaseRdReport base_report;
   const MeshChunkEncoding& base = ChooseBase(prep, header, &base_report);
   EQMESH_ASSIGN_OR_RETURN(const Renumbered* target,

@@ -63,6 +63,9 @@ struct EncodeOptions {
   // Code the base with Draco (streams version 1.1 decoders read) instead of the
   // compact base chunk (format 1.2, compact_base/): bunny 0.25 bpv lost 0.5 dB to it.
   bool draco_base = false;
+  // EQ: context-model the tangential components (format 1.3, eq_model.h); false
+  // writes the seed's iid tangential classes (1.2 chunks).
+  bool eq_tangential_context = true;
   ProgressFn progress;
 };
 

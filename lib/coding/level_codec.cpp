@@ -70,7 +70,7 @@ StatusOr<std::vector<Vec3>> DecodeEqCoefficients(const LevelCodingParams& params
                                              std::to_string(hierarchy.NumOddVertices(j))));
   }
   EQMESH_ASSIGN_OR_RETURN(EqLevelLayout layout, BuildEqLevelLayout(hierarchy, j));
-  auto local = DecodeEqLevel(layout, data, size, params.quantum);
+  auto local = DecodeEqLevel(layout, data, size, params.quantum, params.tangential_context);
   if (!local.ok()) return local.status().WithContext("eqm level chunk " + std::to_string(j));
   return local;
 }

@@ -29,6 +29,7 @@ struct LevelCodingParams {
   double lambda = 1.0;              // per squared quantum (bitstream_shared.h)
   double tangential_factor = 1.0;  // EncodeOptions::tangential_factor
   double quantum = 1.0;             // q0, world units
+  bool tangential_context = false;  // EQ: header flag kTangentialContext (1.3)
 };
 
 // Uniform coder step for the normal (tangential = false) or tangential components.

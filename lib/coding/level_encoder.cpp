@@ -80,6 +80,7 @@ StatusOr<std::vector<uint8_t>> EncodeEq(const LevelCodingParams& params,
   // The EQ coder multiplies lambda by its factor (J = R + lambda D); tangential
   // errors matter less, so their lambda must be *smaller*: pass the reciprocal.
   options.tangential_factor = 1.0 / params.tangential_factor;
+  options.tangential_context = params.tangential_context;
   return EncodeEqLevel(layout, local, params.quantum, options, reconstructed);
 }
 

@@ -27,6 +27,7 @@ struct StreamHeader {
 
   bool has_kept() const { return (flags & bitstream::kHasKeptExactly) != 0; }
   bool has_compact_base() const { return (flags & bitstream::kCompactBase) != 0; }
+  bool has_tangential_context() const { return (flags & bitstream::kTangentialContext) != 0; }
   double lambda() const;
   double tangential_factor() const;
 };

@@ -56,6 +56,7 @@ const std::vector<Sample>& Samples() {
     s.push_back({"uniform_lifted_kept", EncodeSample(CoderId::kUniform, TransformId::kLifted, true)});
     s.push_back({"eq_draco_base_kept", EncodeSample(CoderId::kEq, TransformId::kUnlifted, true, true)});
     const std::string data = std::string(EQMESH_SOURCE_DIR) + "/tests/codec/data/";
+    s.push_back({"golden_v1_3", testing::ReadBytes(data + "golden_v1_3.eqm")});
     s.push_back({"golden_v1_2", testing::ReadBytes(data + "golden_v1_2.eqm")});
     s.push_back({"golden_v1_1", testing::ReadBytes(data + "golden_v1_1.eqm")});
     s.push_back({"golden_v1_0", testing::ReadBytes(data + "golden_v1_0.eqm")});

@@ -21,9 +21,11 @@
 namespace eqmesh::testing {
 namespace {
 
-// Version 1.2 (session 9): the compact base chunk (coding/compact_base/).
-constexpr uint64_t kGoldenStreamHash = 0xf8765b30a0976003ull;
-constexpr uint64_t kGoldenGeometryHash = 0xc89352b22a77c1e0ull;
+// Version 1.3 (session 13): context-modelled tangential components (coding/eq/).
+constexpr uint64_t kGoldenStreamHash = 0xd6c0df72fb7b0967ull;
+constexpr uint64_t kGoldenGeometryHash = 0x5d1bc8753fe82da1ull;
+// The version-1.2 golden of session 9 (the compact base chunk, coding/compact_base/).
+constexpr uint64_t kV12GoldenGeometryHash = 0xc89352b22a77c1e0ull;
 // The version-1.1 golden of session 9 (Draco base chunk, its depth chosen with the
 // closed-loop share of the base weights, base_mesh_encoder.cpp).
 constexpr uint64_t kV11GoldenGeometryHash = 0x931214f8584ad36bull;
@@ -41,8 +43,8 @@ constexpr uint64_t kSingleLambdaGoldenGeometryHash = 0x71e7acd35de5e8d0ull;
 // on this small sample they would take the normal share below 0.90.
 // Session 9: the base depth's closed-loop share, the compact base chunk (1.2) and
 // the unlifted transform's default tangential factor 2. Session 10: lifted is
-// the default transform.
-constexpr uint64_t kBlobStreamHash = 0x08eb714d2daafde1ull;
+// the default transform. Session 13: context-modelled tangential parts (1.3).
+constexpr uint64_t kBlobStreamHash = 0xec41bede7ded40fdull;
 
 // Positions (float32, as every consumer stores them) then indices.
 uint64_t GeometryHash(const Mesh& mesh) {
@@ -81,7 +83,8 @@ TEST(Determinism, GoldenStreamAndItsGeometryHaveThePinnedHashes) {
   const std::pair<const char*, uint64_t> earlier[] = {
       {"golden_v1_1_single_lambda.eqm", kSingleLambdaGoldenGeometryHash},
       {"golden_v1_1_full_base_weight.eqm", kFullBaseWeightGoldenGeometryHash},
-      {"golden_v1_1.eqm", kV11GoldenGeometryHash}};
+      {"golden_v1_1.eqm", kV11GoldenGeometryHash},
+      {"golden_v1_2.eqm", kV12GoldenGeometryHash}};
   for (const auto& [name, hash] : earlier) {
     const std::vector<uint8_t> old = ReadFileOrEmpty(data + name);
     auto old_mesh = Decode(old.data(), old.size());

@@ -22,11 +22,14 @@ namespace eqmesh {
 int64_t PeekEqLevelCount(const uint8_t* data, size_t size);
 
 // Coefficients in integer multiples of q0, indexed by odd index (not scan position).
+// tangential_context: the chunk's tangential components are context-modelled
+// (stream 1.3, header flag kTangentialContext), else one iid class (1.0-1.2).
 StatusOr<std::vector<std::array<int64_t, 3>>> DecodeEqLevelQuanta(const EqLevelLayout& layout,
-                                                                 const uint8_t* data, size_t size);
+                                                                 const uint8_t* data, size_t size,
+                                                                 bool tangential_context);
 
 // Same, in world units: component c of odd vertex k is quanta[k][c] * q0.
 StatusOr<std::vector<Vec3>> DecodeEqLevel(const EqLevelLayout& layout, const uint8_t* data,
-                                          size_t size, double q0);
+                                          size_t size, double q0, bool tangential_context);
 
 }  // namespace eqmesh

@@ -138,36 +138,47 @@ void EncodeSideInfo(RangeEncoder* enc, const EqSideInfo& side, uint32_t count) {
   EncodeClass(enc, side.predictable);
   EncodeClass(enc, side.unpredictable);
   EncodeClass(enc, side.tangential);
+  if (side.tangential_context) EncodeClass(enc, side.tangential_predictable);
 }
 
-// Per scan position: the partition and sigma-hat a pass produced.
+// Per stream position: the partition and sigma-hat a pass produced.
 struct Partition {
   std::vector<uint8_t> predictable;
   std::vector<int32_t> log_sigma2_hat;
   bool operator==(const Partition& o) const { return predictable == o.predictable; }
 };
 
-class LevelEncoder {
- public:
-  LevelEncoder(const EqLevelLayout& layout, std::vector<double> normal, double lambda_q0)
-      : layout_(layout), normal_(std::move(normal)), lambda_q0_(lambda_q0) {}
+// The classes of side information one stream estimates: the normal stream's
+// (predictable gain, unpredictable) or the tangential stream's.
+EqGgdClass* PredictableClass(EqSideInfo* side, bool tangential) {
+  return tangential ? &side->tangential_predictable : &side->predictable;
+}
+EqGgdClass* UnpredictableClass(EqSideInfo* side, bool tangential) {
+  return tangential ? &side->tangential : &side->unpredictable;
+}
 
-  // Step 6: threshold the unquantized causal neighbours.
+// One context-modelled stream of a level (normal values by scan position, or the
+// 1.3 tangential values 2i + c) and its lambda.
+class StreamEncoder {
+ public:
+  StreamEncoder(const EqContextTerms& terms, std::vector<double> values, double lambda_q0)
+      : terms_(terms), values_(std::move(values)), lambda_q0_(lambda_q0) {}
+
+  // Step 6: threshold the unquantized terms.
   Partition InitialPartition() const {
     const double threshold = 0.5 * std::sqrt(6.0 / (lambda_q0_ * std::log(2.0)));
     Partition p;
-    p.predictable.assign(normal_.size(), 0);
-    p.log_sigma2_hat.assign(normal_.size(), 0);
-    for (size_t i = 0; i < normal_.size(); ++i) {
+    p.predictable.assign(values_.size(), 0);
+    p.log_sigma2_hat.assign(values_.size(), 0);
+    for (size_t i = 0; i < values_.size(); ++i) {
       double sum = 0, weight = 0;
       bool significant = false;
-      for (uint32_t e = layout_.offsets[i]; e < layout_.offsets[i + 1]; ++e) {
-        const double x = normal_[layout_.neighbours[e]];
-        const double w = 4 >> (layout_.ring[e] - 1);
+      terms_.ForEach(i, [&](size_t n, uint32_t w) {
+        const double x = values_[n];
         sum += w * x * x;
         weight += w;
         significant = significant || std::fabs(x) >= threshold;
-      }
+      });
       if (!significant) continue;
       p.predictable[i] = 1;
       p.log_sigma2_hat[i] = ClampLog(16.0 * std::log2(sum / weight), kEqMinLogSigma2, kEqMaxLogSigma2);
@@ -176,20 +187,21 @@ class LevelEncoder {
   }
 
   // Step 8: GGD parameters of the two classes of a partition.
-  void EstimateNormalClasses(const Partition& p, EqSideInfo* side) const {
+  void EstimateClasses(const Partition& p, EqSideInfo* side) const {
     GgdFit pred, unpred;
-    for (size_t i = 0; i < normal_.size(); ++i) {
+    for (size_t i = 0; i < values_.size(); ++i) {
       if (p.predictable[i]) {
-        pred.Add(normal_[i] / std::exp2(p.log_sigma2_hat[i] / 32.0));
+        pred.Add(values_[i] / std::exp2(p.log_sigma2_hat[i] / 32.0));
       } else {
-        unpred.Add(normal_[i]);
+        unpred.Add(values_[i]);
       }
     }
-    side->predictable = pred.ToClass(-kEqMaxGain, kEqMaxGain);
+    EqGgdClass* predictable = PredictableClass(side, terms_.tangential());
+    *predictable = pred.ToClass(-kEqMaxGain, kEqMaxGain);
     // A predictable class with nothing in it still needs a quantizer should the
     // final pass classify differently: keep it present with unit gain.
-    if (!side->predictable.present) side->predictable = {true, 5, 0};
-    side->unpredictable = unpred.ToClass(kEqMinLogSigma2, kEqMaxLogSigma2);
+    if (!predictable->present) *predictable = {true, 5, 0};
+    *UnpredictableClass(side, terms_.tangential()) = unpred.ToClass(kEqMinLogSigma2, kEqMaxLogSigma2);
   }
 
   // Steps 9-14: one causal pass; codes when enc is given. Returns the partition and
@@ -197,20 +209,18 @@ class LevelEncoder {
   Partition Pass(const EqSideInfo& side, RangeEncoder* enc, EqEscapeModels* models,
                  std::vector<int64_t>* recon, double* cost = nullptr) const {
     Partition p;
-    p.predictable.assign(normal_.size(), 0);
-    p.log_sigma2_hat.assign(normal_.size(), 0);
-    recon->assign(normal_.size(), 0);
-    for (size_t i = 0; i < normal_.size(); ++i) {
-      const uint32_t b = layout_.offsets[i];
-      const EqNormalChoice c = ChooseNormalQuantizer(side, recon->data(), &layout_.neighbours[b],
-                                                     &layout_.ring[b], layout_.offsets[i + 1] - b);
-      p.predictable[i] = c.ctx == EqContext::kPredictable;
+    p.predictable.assign(values_.size(), 0);
+    p.log_sigma2_hat.assign(values_.size(), 0);
+    recon->assign(values_.size(), 0);
+    for (size_t i = 0; i < values_.size(); ++i) {
+      const EqChoice c = ChooseQuantizer(side, recon->data(), terms_, i);
+      p.predictable[i] = c.ctx == EqContext::kPredictable || c.ctx == EqContext::kTangentialPredictable;
       p.log_sigma2_hat[i] = c.log_sigma2_hat;
-      const int64_t q = ChooseIndex(normal_[i], c.quantizer, lambda_q0_);
+      const int64_t q = ChooseIndex(values_[i], c.quantizer, lambda_q0_);
       if (enc != nullptr) EncodeIndex(enc, c.quantizer, q, c.ctx, models);
       (*recon)[i] = ReconstructIndex(c.quantizer, q);
       if (cost != nullptr) {
-        const double err = normal_[i] - static_cast<double>((*recon)[i]);
+        const double err = values_[i] - static_cast<double>((*recon)[i]);
         *cost += lambda_q0_ * err * err + (c.quantizer.codes_nothing() ? 0.0 : IndexBits(*c.quantizer.entry, q));
       }
     }
@@ -218,45 +228,60 @@ class LevelEncoder {
   }
 
  private:
-  const EqLevelLayout& layout_;
-  std::vector<double> normal_;  // by scan position, in q0
+  const EqContextTerms& terms_;
+  std::vector<double> values_;  // by stream position, in q0
   double lambda_q0_;
 };
 
 // Steps 5-16: alternate parameter estimation and causal passes until the partition
 // the parameters were estimated from reproduces itself (or repeats: a cycle);
 // returns the side information of lowest estimated cost among those tried.
-EqSideInfo IterateNormalClasses(const LevelEncoder& level, EqSideInfo side, int max_iterations,
-                                EqEncodeStats* stats) {
-  std::vector<Partition> history = {level.InitialPartition()};
+EqSideInfo IterateClasses(const StreamEncoder& stream, EqSideInfo side, int max_iterations,
+                          EqEncodeStats* stats) {
+  std::vector<Partition> history = {stream.InitialPartition()};
   std::vector<int64_t> recon;
   EqSideInfo best_side = side;
   double best_cost = 0;
   for (int it = 0; it < std::max(1, max_iterations); ++it) {
-    level.EstimateNormalClasses(history.back(), &side);
+    stream.EstimateClasses(history.back(), &side);
     double cost = 0;
-    Partition next = level.Pass(side, nullptr, nullptr, &recon, &cost);
+    Partition next = stream.Pass(side, nullptr, nullptr, &recon, &cost);
     if (it == 0 || cost < best_cost) {
       best_cost = cost;
       best_side = side;
     }
-    stats->iterations = it + 1;
-    stats->last_change = 0;
-    for (size_t i = 0; i < next.predictable.size(); ++i) {
-      stats->last_change += next.predictable[i] != history.back().predictable[i];
+    if (stats != nullptr) {
+      stats->iterations = it + 1;
+      stats->last_change = 0;
+      for (size_t i = 0; i < next.predictable.size(); ++i) {
+        stats->last_change += next.predictable[i] != history.back().predictable[i];
+      }
     }
     const auto seen = std::find(history.begin(), history.end(), next);
     if (seen == history.end() - 1) {
-      stats->converged = true;
+      if (stats != nullptr) stats->converged = true;
       break;
     }
     if (seen != history.end()) {
-      stats->cycle_length = static_cast<int>(history.end() - seen);
+      if (stats != nullptr) stats->cycle_length = static_cast<int>(history.end() - seen);
       break;
     }
     history.push_back(std::move(next));
   }
   return best_side;
+}
+
+// Streams 1.0-1.2: every tangential component with the one iid class.
+std::vector<int64_t> CodeIidTangential(const EqSideInfo& side, const std::vector<double>& values,
+                                       double lambda_t, RangeEncoder* enc, EqEscapeModels* models) {
+  const EqQuantizer tq = TangentialQuantizer(side);
+  std::vector<int64_t> recon(values.size());
+  for (size_t p = 0; p < values.size(); ++p) {
+    const int64_t q = ChooseIndex(values[p], tq, lambda_t);
+    EncodeIndex(enc, tq, q, EqContext::kTangential, models);
+    recon[p] = ReconstructIndex(tq, q);
+  }
+  return recon;
 }
 
 Status ValidateInputs(const EqLevelLayout& layout, const std::vector<Vec3>& coeffs, double q0,
@@ -298,41 +323,47 @@ StatusOr<std::vector<uint8_t>> EncodeEqLevel(const EqLevelLayout& layout,
                                              EqEncodeStats* stats) {
   EQMESH_RETURN_IF_ERROR(ValidateInputs(layout, local_coeffs, q0, options));
   const size_t n = layout.size();
-  std::vector<double> normal(n);
-  GgdFit tangential;
+  std::vector<double> normal(n), tangential(2 * n);
+  GgdFit iid_tangential;
   for (size_t i = 0; i < n; ++i) {
     const Vec3& c = local_coeffs[layout.scan[i]];
     normal[i] = c[0] / q0;
-    tangential.Add(c[1] / q0);
-    tangential.Add(c[2] / q0);
+    tangential[2 * i] = c[1] / q0;
+    tangential[2 * i + 1] = c[2] / q0;
   }
   EqSideInfo side;
   side.lambda_code = options.lambda_code;
+  side.tangential_context = options.tangential_context;
   const int32_t code_limit = 1 << (kEqCodeBits - 1);
   side.tangential_code = ClampLog(16.0 * std::log2(options.tangential_factor), -code_limit, code_limit - 1);
-  side.tangential = tangential.ToClass(kEqMinLogSigma2, kEqMaxLogSigma2);
   const double lambda_q0 = std::exp2(options.lambda_code / 16.0);
-  const LevelEncoder level(layout, std::move(normal), lambda_q0);
+  const double lambda_t = lambda_q0 * std::exp2(side.tangential_code / 16.0);
+  const EqContextTerms normal_terms(layout, false), tangential_terms(layout, true);
+  const StreamEncoder normal_stream(normal_terms, std::move(normal), lambda_q0);
+  const StreamEncoder tangential_stream(tangential_terms, tangential, lambda_t);
   EqEncodeStats local_stats;
-  side = IterateNormalClasses(level, side, options.max_iterations, &local_stats);
+  side = IterateClasses(normal_stream, side, options.max_iterations, &local_stats);
+  if (side.tangential_context) {
+    side = IterateClasses(tangential_stream, side, options.max_iterations, nullptr);
+  } else {
+    for (double v : tangential) iid_tangential.Add(v);
+    side.tangential = iid_tangential.ToClass(kEqMinLogSigma2, kEqMaxLogSigma2);
+  }
 
   RangeEncoder enc;
   EncodeSideInfo(&enc, side, static_cast<uint32_t>(n));
   EqEscapeModels models;
-  std::vector<int64_t> recon;
-  const Partition partition = level.Pass(side, &enc, &models, &recon);
-  const EqQuantizer tq = TangentialQuantizer(side);
-  const double lambda_t = lambda_q0 * std::exp2(side.tangential_code / 16.0);
+  std::vector<int64_t> recon, recon_t;
+  const Partition partition = normal_stream.Pass(side, &enc, &models, &recon);
+  if (side.tangential_context) {
+    tangential_stream.Pass(side, &enc, &models, &recon_t);
+  } else {
+    recon_t = CodeIidTangential(side, tangential, lambda_t, &enc, &models);
+  }
   std::vector<Vec3> out(n);
   for (size_t i = 0; i < n; ++i) {
-    const Vec3& c = local_coeffs[layout.scan[i]];
-    Vec3& r = out[layout.scan[i]];
-    r[0] = static_cast<double>(recon[i]) * q0;
-    for (int k = 1; k < 3; ++k) {
-      const int64_t q = ChooseIndex(c[k] / q0, tq, lambda_t);
-      EncodeIndex(&enc, tq, q, EqContext::kTangential, &models);
-      r[k] = static_cast<double>(ReconstructIndex(tq, q)) * q0;
-    }
+    out[layout.scan[i]] = Vec3(static_cast<double>(recon[i]), static_cast<double>(recon_t[2 * i]),
+                               static_cast<double>(recon_t[2 * i + 1])) * q0;
     local_stats.unpredictable += partition.predictable[i] ? 0 : 1;
     local_stats.nonzero_normal += recon[i] != 0 ? 1 : 0;
   }

@@ -34,8 +34,10 @@ struct EqEncodeOptions {
   // less; with its J = R + lambda D that would quantize them *finer*, so the intent
   // is a 100x smaller lambda: the default is 1/100.
   double tangential_factor = 0.01;
-  // Bound on the partition iterations (steps 7-16).
+  // Bound on the partition iterations (steps 7-16), per stream.
   int max_iterations = 12;
+  // Context-modelled tangential components (stream 1.3); false writes 1.2 chunks.
+  bool tangential_context = true;
 };
 
 struct EqEncodeStats {

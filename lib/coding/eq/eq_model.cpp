@@ -59,16 +59,15 @@ int32_t Log2Sixteenths(EqUint128 x) {
   return 16 * e + f;
 }
 
-bool EstimateLogSigma2(const int64_t* recon, const uint32_t* neighbours, const uint8_t* rings,
-                       uint32_t count, int32_t* log_sigma2) {
+bool EstimateLogSigma2(const int64_t* recon, const EqContextTerms& terms, size_t p,
+                       int32_t* log_sigma2) {
   EqUint128 sum = 0;
   uint64_t weight = 0;
-  for (uint32_t n = 0; n < count; ++n) {
-    const uint64_t w = 4u >> (rings[n] - 1);
-    const int64_t r = recon[neighbours[n]];
+  terms.ForEach(p, [&](size_t n, uint32_t w) {
+    const int64_t r = recon[n];
     sum += static_cast<EqUint128>(static_cast<uint64_t>(r * r)) * w;
     weight += w;
-  }
+  });
   if (sum == 0) return false;
   // 2^16 headroom keeps 1/16-octave resolution for small sums.
   EqUint128 mean = (sum << 16) / weight;
@@ -97,22 +96,23 @@ int64_t ReconstructIndex(const EqQuantizer& quantizer, int64_t q) {
   return q < 0 ? -value : value;
 }
 
-EqNormalChoice ChooseNormalQuantizer(const EqSideInfo& side, const int64_t* recon,
-                                     const uint32_t* neighbours, const uint8_t* rings,
-                                     uint32_t count) {
-  EqNormalChoice c;
-  if (EstimateLogSigma2(recon, neighbours, rings, count, &c.log_sigma2_hat)) {
-    c.ctx = EqContext::kPredictable;
-    if (side.predictable.present) {
-      c.quantizer = SelectQuantizer(side.predictable.shape,
-                                    c.log_sigma2_hat + side.predictable.log_sigma2, side.lambda_code);
+EqChoice ChooseQuantizer(const EqSideInfo& side, const int64_t* recon, const EqContextTerms& terms,
+                         size_t p) {
+  const bool t = terms.tangential();
+  const EqGgdClass& predictable = t ? side.tangential_predictable : side.predictable;
+  const EqGgdClass& unpredictable = t ? side.tangential : side.unpredictable;
+  const int32_t lambda_code = t ? side.lambda_code + side.tangential_code : side.lambda_code;
+  EqChoice c;
+  if (EstimateLogSigma2(recon, terms, p, &c.log_sigma2_hat)) {
+    c.ctx = t ? EqContext::kTangentialPredictable : EqContext::kPredictable;
+    if (predictable.present) {
+      c.quantizer = SelectQuantizer(predictable.shape, c.log_sigma2_hat + predictable.log_sigma2, lambda_code);
     }
     return c;
   }
-  c.ctx = EqContext::kUnpredictable;
-  if (side.unpredictable.present) {
-    c.quantizer = SelectQuantizer(side.unpredictable.shape, side.unpredictable.log_sigma2,
-                                  side.lambda_code);
+  c.ctx = t ? EqContext::kTangential : EqContext::kUnpredictable;
+  if (unpredictable.present) {
+    c.quantizer = SelectQuantizer(unpredictable.shape, unpredictable.log_sigma2, lambda_code);
   }
   return c;
 }
@@ -159,13 +159,18 @@ int64_t DecodeIndex(RangeDecoder* dec, const EqQuantizer& quantizer, EqContext c
   return negative ? -mag : mag;
 }
 
-bool DecodeSideInfo(RangeDecoder* dec, uint32_t expected_count, EqSideInfo* side) {
+bool DecodeSideInfo(RangeDecoder* dec, uint32_t expected_count, bool tangential_context,
+                    EqSideInfo* side) {
   const uint32_t count = dec->DecodeBits(32);
   ReadSigned(dec, kEqCodeBits, &side->lambda_code);
   ReadSigned(dec, kEqCodeBits, &side->tangential_code);
   bool ok = DecodeClass(dec, -kEqMaxGain, kEqMaxGain, &side->predictable);
   ok = DecodeClass(dec, kEqMinLogSigma2, kEqMaxLogSigma2, &side->unpredictable) && ok;
   ok = DecodeClass(dec, kEqMinLogSigma2, kEqMaxLogSigma2, &side->tangential) && ok;
+  side->tangential_context = tangential_context;
+  if (tangential_context) {
+    ok = DecodeClass(dec, -kEqMaxGain, kEqMaxGain, &side->tangential_predictable) && ok;
+  }
   return ok && dec->ok() && count == expected_count;
 }
 

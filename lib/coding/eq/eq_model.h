@@ -20,6 +20,14 @@
 //    sigma_q16 = round(2^30 2^((s mod 32) / 32)) shifted by floor(s / 32) - 14.
 //  * reconstruction of index q != 0: sign(q) min(2^28, floor((sigma_q16 *
 //    ReconstructionQ16(|q|) + 2^31) / 2^32)) quanta.
+//  * tangential components (stream 1.3, EqSideInfo::tangential_context): the same
+//    estimate over the tangential stream, value 2i + c = component c (0 tangent, 1
+//    bitangent) of scan position i. Its terms are both tangential components of
+//    every causal neighbour (weights 4, 2, 1 by ring) and, for the bitangent, the
+//    vertex's own tangent (weight 4); all zero -> the unpredictable tangential class
+//    (`tangential`), else sigma-hat times the tangential gain, at lambda_code +
+//    tangential_code. Streams 1.0-1.2 code every tangential component with the one
+//    class `tangential`.
 //  * chunk: side information, then the normal index of every vertex in scan order,
 //    then (tangent, bitangent) indices vertex by vertex in scan order. An index is
 //    the magnitude symbol min(|q|, M) under the entry's frequencies (total 2^15), a
@@ -33,6 +41,11 @@
 //    integers, and the gain absorbs its bias for the level's actual distribution.
 //  * A coefficient is unpredictable exactly when its causal neighbours all
 //    reconstruct to zero (or it has none), which the decoder can check itself.
+//  * The seed codes tangential components as iid per level. They are not: the
+//    non-normal vertices (a few percent) carry nearly all tangential energy, and
+//    they cluster (holes, creases, wherever piercing failed). So since 1.3 the
+//    tangential components get the EQ treatment too: a spatial context and their
+//    own predictable / unpredictable classes.
 //  * Magnitudes at or beyond the table's open bin M are escaped with an adaptive
 //    Exp-Golomb code of |q| - M (context-modelled prefix, bypass suffix) whose order
 //    k = max(0, 15 - floor(log2 step_q16)) puts 2^k near half a sigma in steps, so
@@ -45,6 +58,7 @@
 
 #include "coding/entropy/quantizer_table.h"
 #include "coding/entropy/range_coder.h"
+#include "coding/eq/eq_layout.h"
 
 namespace eqmesh {
 
@@ -70,7 +84,10 @@ struct EqSideInfo {
   int32_t tangential_code = 0;  // lambda_t = lambda * 2^(tangential_code / 16)
   EqGgdClass predictable;       // log_sigma2 is the gain g: sigma^2 = sigma_hat^2 2^(g/16)
   EqGgdClass unpredictable;
-  EqGgdClass tangential;
+  EqGgdClass tangential;        // all tangential components, or (1.3) the unpredictable ones
+  // Stream 1.3: tangential components are context-modelled; this is their gain.
+  bool tangential_context = false;
+  EqGgdClass tangential_predictable;
 };
 
 __extension__ typedef unsigned __int128 EqUint128;  // GCC/Clang; pedantic-clean
@@ -79,11 +96,43 @@ __extension__ typedef __int128 EqInt128;
 // floor(16 * log2(x)) for x >= 1, exactly, in integers.
 int32_t Log2Sixteenths(EqUint128 x);
 
-// log2(sigma_hat^2) in 1/16 octave from the reconstructed causal neighbours (in q0,
-// indexed by scan position); false when every neighbour is zero or there is none
-// (the coefficient is unpredictable).
-bool EstimateLogSigma2(const int64_t* recon, const uint32_t* neighbours, const uint8_t* rings,
-                       uint32_t count, int32_t* log_sigma2);
+// Which reconstructed values (and with which weights) feed the sigma estimate of
+// value p of one of a level's two coded streams: the normal stream (p = scan
+// position) or the tangential stream (p = 2 scan position + component).
+class EqContextTerms {
+ public:
+  EqContextTerms(const EqLevelLayout& layout, bool tangential)
+      : layout_(layout), tangential_(tangential) {}
+  bool tangential() const { return tangential_; }
+  size_t size() const { return tangential_ ? 2 * layout_.size() : layout_.size(); }
+
+  // Calls f(value index, weight) for every term of value p.
+  template <typename F>
+  void ForEach(size_t p, F&& f) const {
+    const size_t i = tangential_ ? p / 2 : p;
+    for (uint32_t e = layout_.offsets[i]; e < layout_.offsets[i + 1]; ++e) {
+      const uint32_t w = 4u >> (layout_.ring[e] - 1);
+      const uint32_t n = layout_.neighbours[e];
+      if (!tangential_) {
+        f(n, w);
+        continue;
+      }
+      f(2 * size_t{n}, w);
+      f(2 * size_t{n} + 1, w);
+    }
+    if (tangential_ && (p & 1) != 0) f(p - 1, 4u);
+  }
+
+ private:
+  const EqLevelLayout& layout_;
+  bool tangential_;
+};
+
+// log2(sigma_hat^2) in 1/16 octave from the reconstructed terms of value p (recon in
+// q0, indexed like the stream); false when every term is zero or there is none (the
+// value is unpredictable).
+bool EstimateLogSigma2(const int64_t* recon, const EqContextTerms& terms, size_t p,
+                       int32_t* log_sigma2);
 
 // The quantizer of one coefficient: a table entry and the sigma it is scaled by.
 struct EqQuantizer {
@@ -97,22 +146,28 @@ EqQuantizer SelectQuantizer(int shape, int32_t log_sigma2, int32_t lambda_code);
 int64_t ReconstructIndex(const EqQuantizer& quantizer, int64_t q);
 
 // Context sets of the escape models.
-enum class EqContext : int { kPredictable = 0, kUnpredictable = 1, kTangential = 2 };
+enum class EqContext : int {
+  kPredictable = 0,
+  kUnpredictable = 1,
+  kTangential = 2,  // the tangential class: all of them (1.0-1.2) or the unpredictable ones
+  kTangentialPredictable = 3,
+};
 struct EqEscapeModels {
-  std::array<std::array<AdaptiveBit, kEqMaxEscapePrefix + 1>, 3> prefix;
+  std::array<std::array<AdaptiveBit, kEqMaxEscapePrefix + 1>, 4> prefix;
 };
 
-// The normal-component quantizer of one coefficient from its causal neighbourhood
-// (recon indexed by scan position): predictable ones use sigma-hat times the level's
-// gain and the predictable shape; the rest use the unpredictable class.
-struct EqNormalChoice {
+// The quantizer of value p of a context-modelled stream (the normal stream, or the
+// 1.3 tangential one) from its terms (recon indexed like the stream): predictable
+// values use sigma-hat times the stream's gain and its predictable shape; the rest
+// use the stream's unpredictable class.
+struct EqChoice {
   EqQuantizer quantizer;
   EqContext ctx = EqContext::kUnpredictable;
   int32_t log_sigma2_hat = 0;  // sigma-hat^2 before the gain (predictable only)
 };
-EqNormalChoice ChooseNormalQuantizer(const EqSideInfo& side, const int64_t* recon,
-                                     const uint32_t* neighbours, const uint8_t* rings,
-                                     uint32_t count);
+EqChoice ChooseQuantizer(const EqSideInfo& side, const int64_t* recon, const EqContextTerms& terms,
+                         size_t p);
+// Streams 1.0-1.2: the one quantizer of every tangential component.
 EqQuantizer TangentialQuantizer(const EqSideInfo& side);
 
 // Exp-Golomb order of the escape of an entry (see above).
@@ -124,10 +179,12 @@ int64_t DecodeIndex(RangeDecoder* dec, const EqQuantizer& quantizer, EqContext c
 
 // Side information layout (bypass bits, in this order): coefficient count (32),
 // lambda_code and tangential_code (16 each, offset 2^15), then per class
-// (predictable, unpredictable, tangential): present (1), and if present shape (4)
-// and log_sigma2 (12, offset 2^11). Decoding validates every range.
+// (predictable, unpredictable, tangential, and with tangential_context the
+// tangential predictable one): present (1), and if present shape (4) and
+// log_sigma2 (12, offset 2^11). Decoding validates every range.
 inline constexpr int32_t kEqMaxGain = 1024;  // |predictable gain| limit
-bool DecodeSideInfo(RangeDecoder* dec, uint32_t expected_count, EqSideInfo* side);
+bool DecodeSideInfo(RangeDecoder* dec, uint32_t expected_count, bool tangential_context,
+                    EqSideInfo* side);
 
 // Bits of the side-information fields, shared by both halves.
 inline constexpr int kEqCodeBits = 16;
