@@ -24,6 +24,30 @@ void ExpectEachIndexOnce(SpinTeam* team, size_t n) {
   for (size_t i = 0; i < n; ++i) ASSERT_EQ(calls[i].load(), 1) << "index " << i << " of " << n;
 }
 
+// One yielding busy thread per core while it lives: the team's helpers get
+// descheduled at arbitrary points.
+class BusyThreads {
+ public:
+  BusyThreads() {
+    const unsigned cores = std::max(2u, std::thread::hardware_concurrency());
+    for (unsigned k = 0; k < cores; ++k) {
+      threads_.emplace_back([this] {
+        while (!stop_.load(std::memory_order_relaxed)) std::this_thread::yield();
+      });
+    }
+  }
+  ~BusyThreads() {
+    stop_ = true;
+    for (std::thread& t : threads_) t.join();
+  }
+  BusyThreads(const BusyThreads&) = delete;
+  BusyThreads& operator=(const BusyThreads&) = delete;
+
+ private:
+  std::atomic<bool> stop_{false};
+  std::vector<std::thread> threads_;
+};
+
 TEST(SpinTeam, ManyTinyBatchesCallEveryIndexOnce) {
   SpinTeam team(2);
   EXPECT_EQ(team.workers(), 2);
@@ -43,18 +67,9 @@ TEST(SpinTeam, WakesHelpersThatFellAsleep) {
 // end without them (shut out) or with them (entered first); either way every
 // index runs once, and a helper shut out of one batch joins a later one.
 TEST(SpinTeam, OversubscribedBatchesStillCallEveryIndexOnce) {
-  std::atomic<bool> stop{false};
-  std::vector<std::thread> busy;
-  const unsigned cores = std::max(2u, std::thread::hardware_concurrency());
-  for (unsigned k = 0; k < cores; ++k) {
-    busy.emplace_back([&stop] {
-      while (!stop.load(std::memory_order_relaxed)) std::this_thread::yield();
-    });
-  }
+  const BusyThreads busy;
   SpinTeam team(3);
   for (int batch = 0; batch < 10000; ++batch) ExpectEachIndexOnce(&team, static_cast<size_t>(batch % 13));
-  stop = true;
-  for (std::thread& t : busy) t.join();
 }
 
 // A team destroyed right after a batch, while its helpers are still on their way
@@ -62,20 +77,11 @@ TEST(SpinTeam, OversubscribedBatchesStillCallEveryIndexOnce) {
 // destructor's join hung once in ctest -j2). Oversubscribed, so that a helper is
 // often descheduled between seeing a batch and reading its number.
 TEST(SpinTeam, DestroyedRightAfterABatchNeverHangs) {
-  std::atomic<bool> stop{false};
-  std::vector<std::thread> busy;
-  const unsigned cores = std::max(2u, std::thread::hardware_concurrency());
-  for (unsigned k = 0; k < cores; ++k) {
-    busy.emplace_back([&stop] {
-      while (!stop.load(std::memory_order_relaxed)) std::this_thread::yield();
-    });
-  }
+  const BusyThreads busy;
   for (int round = 0; round < 3000; ++round) {
     SpinTeam team(3);
     ExpectEachIndexOnce(&team, static_cast<size_t>(2 + round % 5));
   }
-  stop = true;
-  for (std::thread& t : busy) t.join();
 }
 
 TEST(SpinTeam, OneWorkerRunsInline) {
