@@ -1,5 +1,6 @@
 // eqmesh info FILE [--json]: reads a mesh and prints its diagnosis (counts,
-// boundary, manifoldness, orientation, components, genus, degeneracy).
+// boundary, manifoldness, orientation, components, genus, degeneracy); for an
+// eqmesh stream, what the stream holds (stream_info.h).
 #include <chrono>
 #include <cstdio>
 #include <map>
@@ -12,6 +13,7 @@
 #include "mesh/diagnose.h"
 #include "mesh/mesh_io.h"
 #include "tools/command.h"
+#include "tools/stream_info.h"
 
 namespace eqmesh::cli {
 namespace {
@@ -115,16 +117,20 @@ void PrintTable(const InfoResult& r) {
 }
 
 int RunInfo(int argc, char** argv) {
-  CLI::App app{"Print the topology and geometry diagnosis of a mesh."};
+  CLI::App app{"Print the topology and geometry diagnosis of a mesh, or what an eqmesh stream holds."};
   std::string path;
   bool json = false;
-  app.add_option("file", path, "mesh file: .obj .ply .off .gltf .glb, optionally gzip-compressed")->required();
+  app.add_option("file", path,
+                 "mesh file: .obj .ply .off .gltf .glb, optionally gzip-compressed; or an eqmesh stream "
+                 "(.eqm: header, chunk sizes and the vertex count of every level, nothing decoded past the base)")
+      ->required();
   app.add_flag("--json", json, "print one JSON object instead of a table");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
+  if (LooksLikeStream(path)) return PrintStreamInfo(path, json);
   InfoResult result;
   result.path = path;
   const auto start = std::chrono::steady_clock::now();
@@ -147,6 +153,6 @@ int RunInfo(int argc, char** argv) {
 
 }  // namespace
 
-EQMESH_REGISTER_COMMAND("info", "print a mesh's topology and geometry diagnosis", RunInfo);
+EQMESH_REGISTER_COMMAND("info", "print a mesh's topology and geometry diagnosis, or an eqmesh stream's contents", RunInfo);
 
 }  // namespace eqmesh::cli
