@@ -2,6 +2,7 @@
 #include "coding/eq/eq_encoder.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 
@@ -35,14 +36,13 @@ class GgdFit {
     for (double v : values_) max_abs = std::max(max_abs, v);
     if (values_.empty() || max_abs == 0) return c;
     const double n = static_cast<double>(values_.size());
+    const std::array<double, kQuantizerShapeCount> sums = ScaledPowerSums(max_abs);
     double best_nll = 0, best_log_sigma = 0;
     for (int s = 0; s < kQuantizerShapeCount; ++s) {
       const double nu = QuantizerTableLayout::Shape(s);
       const double lg1 = std::lgamma(1.0 / nu);
       const double log_eta1 = 0.5 * (std::lgamma(3.0 / nu) - lg1);
-      double sum = 0;
-      for (double v : values_) sum += std::pow(v / max_abs, nu);  // scaled against overflow
-      const double log_sigma = std::log(max_abs) + std::log(nu / n * sum) / nu + log_eta1;
+      const double log_sigma = std::log(max_abs) + std::log(nu / n * sums[s]) / nu + log_eta1;
       const double nll = -(std::log(nu / 2.0) + log_eta1 - log_sigma - lg1) + 1.0 / nu;
       if (s == 0 || nll < best_nll) {
         best_nll = nll;
@@ -56,6 +56,25 @@ class GgdFit {
   }
 
  private:
+  // sum over the values of (|x| / max_abs)^nu for every table shape (scaled against
+  // overflow). The shapes are nu = 0.5 + 0.1 s, so the terms are sqrt(t) (t^0.1)^s:
+  // one pow per value instead of one per value and shape, which had been a third
+  // of the encoder's time (bunny, --bpv 1).
+  std::array<double, kQuantizerShapeCount> ScaledPowerSums(double max_abs) const {
+    std::array<double, kQuantizerShapeCount> sums{};
+    for (double v : values_) {
+      if (v == 0) continue;
+      const double t = v / max_abs;
+      const double ratio = std::pow(t, 0.1);
+      double term = std::sqrt(t);
+      for (double& sum : sums) {
+        sum += term;
+        term *= ratio;
+      }
+    }
+    return sums;
+  }
+
   std::vector<double> values_;
 };
 
