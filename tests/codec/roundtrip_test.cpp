@@ -76,6 +76,25 @@ INSTANTIATE_TEST_SUITE_P(Coders, RoundTrip,
                                            Case{TransformId::kUnlifted, CoderId::kUniform},
                                            Case{TransformId::kLifted, CoderId::kUniform}));
 
+// The encoder can still write 1.2 EQ chunks (iid tangential classes, flag clear);
+// the decoder reads them, and the 1.3 chunks of the same mesh decode as closely.
+TEST(RoundTrip, Version12EqChunksStillRoundTrip) {
+  const SemiRegularMesh mesh = testing::MakeBumpySphere(3);
+  const double diagonal = testing::Diagonal(mesh.positions);
+  for (bool context : {false, true}) {
+    EncodeOptions options;
+    options.lambda = 1.0;
+    options.eq_tangential_context = context;
+    auto bytes = Encode(mesh, options);
+    ASSERT_TRUE(bytes.ok()) << bytes.status().ToString();
+    DecodeInfo info;
+    auto decoded = Decode(bytes->data(), bytes->size(), {}, &info);
+    ASSERT_TRUE(decoded.ok()) << decoded.status().ToString();
+    EXPECT_EQ(info.stream.has_tangential_context, context);
+    EXPECT_LE(testing::MaxNearestDistance(decoded->positions, mesh.positions), 2e-3 * diagonal);
+  }
+}
+
 TEST(RoundTrip, LevelOptionGivesTheLevelVertexCounts) {
   const SemiRegularMesh mesh = testing::MakeBumpySphereWithKept(3);
   auto bytes = Encode(mesh, EncodeOptions{});
