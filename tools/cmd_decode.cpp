@@ -17,8 +17,6 @@ namespace eqmesh::cli {
 namespace {
 
 constexpr const char* kName = "decode";
-// Streams are small; refuse anything that could not be one before reading it all.
-constexpr uint64_t kMaxStreamBytes = uint64_t{1} << 31;
 
 // Compressed glTF in: decode every EXT_normal_mesh_compression primitive. A .glb
 // output keeps the whole scene as plain glTF; OBJ/PLY/OFF get the flattened geometry.
@@ -66,7 +64,7 @@ int RunDecode(int argc, char** argv) {
   }
   if (IsSameFile(in_path, out_path)) return Fail(kName, out_path + ": is the input file; write the output elsewhere");
   if (EndsWith(in_path, ".glb") || EndsWith(in_path, ".gltf")) return DecodeGltf(in_path, out_path, level, json);
-  auto bytes = ReadFileBytes(in_path, kMaxStreamBytes);
+  auto bytes = ReadFileBytes(in_path, kMaxStreamFileBytes);
   if (!bytes.ok()) return Fail(kName, bytes.status().message());
   const auto start = std::chrono::steady_clock::now();
   DecodeOptions options;

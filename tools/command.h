@@ -3,6 +3,7 @@
 // EQMESH_REGISTER_COMMAND; main() dispatches on argv[1].
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -25,6 +26,10 @@ struct Registrar {
 
 // Prints "eqmesh <command>: error: <message>" on stderr and returns exit code 1.
 int Fail(const std::string& command, const std::string& message);
+
+// Largest .eqm file the commands read: streams are small, so anything larger is
+// refused before it is read whole.
+inline constexpr uint64_t kMaxStreamFileBytes = uint64_t{1} << 31;
 
 // Whether a path ends with an extension such as ".srm" (exact case; commands pick
 // their output format and their special inputs by name).

@@ -4,7 +4,6 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
-#include <set>
 #include <utility>
 #include <vector>
 
@@ -19,21 +18,22 @@ namespace eqmesh::cli {
 namespace {
 
 constexpr const char* kName = "info";
-constexpr uint64_t kMaxStreamBytes = uint64_t{1} << 31;  // as `eqmesh decode`
 
 struct LevelCounts {
   uint64_t vertices = 0, faces = 0, edges = 0;
 };
 
 // Counts of levels 0..levels from the base mesh: 1-to-4 subdivision adds a
-// vertex per edge, splits each edge in two and adds three edges per face.
-std::vector<LevelCounts> CountLevels(const SemiRegularMesh& base, int levels) {
-  std::set<std::pair<uint32_t, uint32_t>> edges;
-  for (const Face& f : base.hierarchy.BaseFaces()) {
-    for (int c = 0; c < 3; ++c) edges.insert(std::minmax(f[c], f[(c + 1) % 3]));
-  }
+// vertex per edge, splits each edge in two and adds three edges per face. The
+// base's edge count is its first refinement's odd-vertex count (ext_spec B.1),
+// from one Refine of the base alone.
+StatusOr<std::vector<LevelCounts>> CountLevels(const SemiRegularMesh& base, int levels) {
   std::vector<LevelCounts> counts(1);
-  counts[0] = {base.hierarchy.NumVertices(0), base.hierarchy.BaseFaces().size(), edges.size()};
+  counts[0] = {base.hierarchy.NumVertices(0), base.hierarchy.BaseFaces().size(), 0};
+  if (levels == 0) return counts;
+  SemiRegularHierarchy once = base.hierarchy;
+  EQMESH_RETURN_IF_ERROR(once.Refine());
+  counts[0].edges = once.NumOddVertices(0);
   for (int k = 0; k < levels; ++k) {
     const LevelCounts& c = counts.back();
     counts.push_back({c.vertices + c.edges, 4 * c.faces, 2 * c.edges + 3 * c.faces});
@@ -138,7 +138,7 @@ bool LooksLikeStream(const std::string& path) {
 }
 
 int PrintStreamInfo(const std::string& path, bool json) {
-  auto bytes = ReadFileBytes(path, kMaxStreamBytes);
+  auto bytes = ReadFileBytes(path, kMaxStreamFileBytes);
   if (!bytes.ok()) return Fail(kName, bytes.status().message());
   auto stream = ReadStreamInfo(bytes->data(), bytes->size());
   if (!stream.ok()) return Fail(kName, path + ": " + stream.status().message());
@@ -153,7 +153,9 @@ int PrintStreamInfo(const std::string& path, bool json) {
     options.allow_truncated = true;
     auto base = DecodeSemiRegular(bytes->data(), bytes->size(), options);
     if (!base.ok()) return Fail(kName, path + ": " + base.status().message());
-    r.levels = CountLevels(*base, r.stream.levels);
+    auto levels = CountLevels(*base, r.stream.levels);
+    if (!levels.ok()) return Fail(kName, path + ": " + levels.status().message());
+    r.levels = std::move(*levels);
     r.kept_vertices = base->kept_exactly.positions.size();
     r.kept_faces = base->kept_exactly.faces.size();
   }

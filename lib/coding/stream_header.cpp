@@ -82,7 +82,7 @@ Status ReadCodingSetup(ByteReader* r, StreamHeader* h) {
                       std::to_string(bitstream::kMaxLevels));
   }
   if ((h->flags & ~bitstream::kKnownFlags) != 0) return r->Corrupt("unknown header flags");
-  if ((h->flags & bitstream::kTangentialContext) != 0 && coder != static_cast<uint8_t>(bitstream::CoderId::kEq)) {
+  if (h->has_tangential_context() && coder != static_cast<uint8_t>(bitstream::CoderId::kEq)) {
     return r->Corrupt("tangential-context flag on a stream whose coder is not EQ");
   }
   h->transform = static_cast<bitstream::TransformId>(transform);

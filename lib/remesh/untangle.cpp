@@ -207,23 +207,15 @@ struct Untangler {
   // Input point closest to `target` on a triangle facing along `facing`, within
   // `reach` (a filtered search cannot prune by distance alone, so it is bounded).
   ClosestPointResult ProjectFacing(const Vec3& target, const Vec3& facing, double reach) const {
-    const std::vector<Vec3>& x = surface.mesh->positions;
     return surface.bvh->ClosestPointFiltered(
-        target,
-        [&](uint32_t f) {
-          const Face& g = surface.mesh->faces[f];
-          return (x[g[1]] - x[g[0]]).cross(x[g[2]] - x[g[0]]).dot(facing) > 0.0;
-        },
-        reach);
+        target, [&](uint32_t f) { return surface.face_normals[f].dot(facing) > 0.0; }, reach);
   }
 
   // Orientation of the input where v lies now.
   Vec3 InputNormal(uint32_t v) const {
     const ClosestPointResult cp = surface.bvh->ClosestPoint(pos[v]);
     if (!cp.found()) return Vec3::Zero();
-    const Face& g = surface.mesh->faces[cp.face];
-    const std::vector<Vec3>& x = surface.mesh->positions;
-    return (x[g[1]] - x[g[0]]).cross(x[g[2]] - x[g[0]]);
+    return surface.face_normals[cp.face];
   }
 
   // Where v would go for blend t towards `aim`: the closest

@@ -167,21 +167,14 @@ struct Partition {
   bool operator==(const Partition& o) const { return predictable == o.predictable; }
 };
 
-// The classes of side information one stream estimates: the normal stream's
-// (predictable gain, unpredictable) or the tangential stream's.
-EqGgdClass* PredictableClass(EqSideInfo* side, bool tangential) {
-  return tangential ? &side->tangential_predictable : &side->predictable;
-}
-EqGgdClass* UnpredictableClass(EqSideInfo* side, bool tangential) {
-  return tangential ? &side->tangential : &side->unpredictable;
-}
-
 // One context-modelled stream of a level (normal values by scan position, or the
 // 1.3 tangential values 2i + c) and its lambda.
 class StreamEncoder {
  public:
   StreamEncoder(const EqContextTerms& terms, std::vector<double> values, double lambda_q0)
       : terms_(terms), values_(std::move(values)), lambda_q0_(lambda_q0) {}
+
+  const std::vector<double>& values() const { return values_; }
 
   // Step 6: threshold the unquantized terms.
   Partition InitialPartition() const {
@@ -215,12 +208,12 @@ class StreamEncoder {
         unpred.Add(values_[i]);
       }
     }
-    EqGgdClass* predictable = PredictableClass(side, terms_.tangential());
+    EqGgdClass* predictable = side->MutablePredictableOf(terms_.tangential());
     *predictable = pred.ToClass(-kEqMaxGain, kEqMaxGain);
     // A predictable class with nothing in it still needs a quantizer should the
     // final pass classify differently: keep it present with unit gain.
     if (!predictable->present) *predictable = {true, 5, 0};
-    *UnpredictableClass(side, terms_.tangential()) = unpred.ToClass(kEqMinLogSigma2, kEqMaxLogSigma2);
+    *side->MutableUnpredictableOf(terms_.tangential()) = unpred.ToClass(kEqMinLogSigma2, kEqMaxLogSigma2);
   }
 
   // Steps 9-14: one causal pass; codes when enc is given. Returns the partition and
@@ -343,7 +336,6 @@ StatusOr<std::vector<uint8_t>> EncodeEqLevel(const EqLevelLayout& layout,
   EQMESH_RETURN_IF_ERROR(ValidateInputs(layout, local_coeffs, q0, options));
   const size_t n = layout.size();
   std::vector<double> normal(n), tangential(2 * n);
-  GgdFit iid_tangential;
   for (size_t i = 0; i < n; ++i) {
     const Vec3& c = local_coeffs[layout.scan[i]];
     normal[i] = c[0] / q0;
@@ -359,13 +351,14 @@ StatusOr<std::vector<uint8_t>> EncodeEqLevel(const EqLevelLayout& layout,
   const double lambda_t = lambda_q0 * std::exp2(side.tangential_code / 16.0);
   const EqContextTerms normal_terms(layout, false), tangential_terms(layout, true);
   const StreamEncoder normal_stream(normal_terms, std::move(normal), lambda_q0);
-  const StreamEncoder tangential_stream(tangential_terms, tangential, lambda_t);
+  const StreamEncoder tangential_stream(tangential_terms, std::move(tangential), lambda_t);
   EqEncodeStats local_stats;
   side = IterateClasses(normal_stream, side, options.max_iterations, &local_stats);
   if (side.tangential_context) {
     side = IterateClasses(tangential_stream, side, options.max_iterations, nullptr);
   } else {
-    for (double v : tangential) iid_tangential.Add(v);
+    GgdFit iid_tangential;
+    for (double v : tangential_stream.values()) iid_tangential.Add(v);
     side.tangential = iid_tangential.ToClass(kEqMinLogSigma2, kEqMaxLogSigma2);
   }
 
@@ -377,7 +370,7 @@ StatusOr<std::vector<uint8_t>> EncodeEqLevel(const EqLevelLayout& layout,
   if (side.tangential_context) {
     tangential_stream.Pass(side, &enc, &models, &recon_t);
   } else {
-    recon_t = CodeIidTangential(side, tangential, lambda_t, &enc, &models);
+    recon_t = CodeIidTangential(side, tangential_stream.values(), lambda_t, &enc, &models);
   }
   std::vector<Vec3> out(n);
   for (size_t i = 0; i < n; ++i) {

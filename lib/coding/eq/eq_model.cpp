@@ -99,8 +99,8 @@ int64_t ReconstructIndex(const EqQuantizer& quantizer, int64_t q) {
 EqChoice ChooseQuantizer(const EqSideInfo& side, const int64_t* recon, const EqContextTerms& terms,
                          size_t p) {
   const bool t = terms.tangential();
-  const EqGgdClass& predictable = t ? side.tangential_predictable : side.predictable;
-  const EqGgdClass& unpredictable = t ? side.tangential : side.unpredictable;
+  const EqGgdClass& predictable = side.PredictableOf(t);
+  const EqGgdClass& unpredictable = side.UnpredictableOf(t);
   const int32_t lambda_code = t ? side.lambda_code + side.tangential_code : side.lambda_code;
   EqChoice c;
   if (EstimateLogSigma2(recon, terms, p, &c.log_sigma2_hat)) {

@@ -89,6 +89,21 @@ struct EqSideInfo {
   // Stream 1.3: tangential components are context-modelled; this is their gain.
   bool tangential_context = false;
   EqGgdClass tangential_predictable;
+
+  // The two classes of a context-modelled stream: the normal one, or (1.3) the
+  // tangential one.
+  const EqGgdClass& PredictableOf(bool tangential_stream) const {
+    return tangential_stream ? tangential_predictable : predictable;
+  }
+  const EqGgdClass& UnpredictableOf(bool tangential_stream) const {
+    return tangential_stream ? tangential : unpredictable;
+  }
+  EqGgdClass* MutablePredictableOf(bool tangential_stream) {
+    return tangential_stream ? &tangential_predictable : &predictable;
+  }
+  EqGgdClass* MutableUnpredictableOf(bool tangential_stream) {
+    return tangential_stream ? &tangential : &unpredictable;
+  }
 };
 
 __extension__ typedef unsigned __int128 EqUint128;  // GCC/Clang; pedantic-clean
