@@ -4,6 +4,7 @@
 #include <string>
 
 #include "tools/command.h"
+#include "tools/huge_pages.h"
 
 namespace eqmesh::cli {
 
@@ -34,6 +35,7 @@ void PrintUsage(FILE* out) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  eqmesh::cli::ReexecWithHugePagesIfUseful(argv);
   if (argc < 2) {
     PrintUsage(stderr);
     return 2;

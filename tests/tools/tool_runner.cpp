@@ -13,8 +13,8 @@
 
 namespace eqmesh::testing {
 
-ToolRun RunTool(const std::string& args) {
-  const std::string cmd = std::string(EQMESH_TOOL) + " " + args + " 2>&1";
+ToolRun RunTool(const std::string& args, const std::string& prefix) {
+  const std::string cmd = prefix + std::string(EQMESH_TOOL) + " " + args + " 2>&1";
   ToolRun r;
   FILE* pipe = popen(cmd.c_str(), "r");
   if (!pipe) return r;

@@ -12,8 +12,9 @@ struct ToolRun {
   std::string output;  // stdout and stderr together
 };
 
-// Runs `eqmesh <args>` through the shell (args are pasted as they are).
-ToolRun RunTool(const std::string& args);
+// Runs `eqmesh <args>` through the shell (args are pasted as they are);
+// `prefix` goes before the command (e.g. "env NAME=VALUE ").
+ToolRun RunTool(const std::string& args, const std::string& prefix = "");
 
 // A fresh, empty directory for one test (removed by the destructor).
 class ScratchDir {
