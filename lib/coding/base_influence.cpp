@@ -27,17 +27,20 @@ StencilReaders BuildReaders(const StencilTable& s, size_t coarse) {
   return r;
 }
 
-// One impulse refined through every level. `values` is all zeros on entry and on
-// exit; `support` lists, in increasing order, the vertices the impulse may reach
-// (the others stay exactly zero).
+// One impulse refined through every level. `values_` is all zeros between
+// impulses; `support_` lists the vertices the impulse has reached (the others
+// stay exactly zero), each once.
 class ImpulseRefiner {
  public:
   explicit ImpulseRefiner(const SemiRegularHierarchy& hierarchy) : hierarchy_(hierarchy) {
+    size_t widest = 0;
     for (int j = 0; j < hierarchy.levels(); ++j) {
       stencils_.push_back(BuildButterflyStencils(hierarchy, j));
       readers_.push_back(BuildReaders(stencils_.back(), hierarchy.NumVertices(j)));
+      widest = std::max(widest, stencils_.back().size());
     }
     values_.assign(hierarchy.NumVertices(hierarchy.levels()), 0.0);
+    seen_.assign(widest, 0);
   }
 
   // sum over the finest vertices of phi_i(v)^2 for the impulse at base vertex i.
@@ -47,6 +50,7 @@ class ImpulseRefiner {
     for (int j = 0; j < hierarchy_.levels(); ++j) RefineLevel(j);
     // In index order, as a sum over every vertex would add them: the zeros it
     // would add in between change nothing.
+    std::sort(support_.begin(), support_.end());
     double energy = 0.0;
     for (uint32_t v : support_) energy += values_[v] * values_[v];
     for (uint32_t v : support_) values_[v] = 0.0;
@@ -54,24 +58,27 @@ class ImpulseRefiner {
   }
 
  private:
+  // Every vertex reached so far is a coarse vertex of level j (below
+  // NumVertices(j)); the stencils reading them are evaluated once each.
   void RefineLevel(int j) {
     const StencilTable& s = stencils_[static_cast<size_t>(j)];
     const StencilReaders& r = readers_[static_cast<size_t>(j)];
     const uint32_t coarse = hierarchy_.NumVertices(j);
-    reached_.clear();
-    for (uint32_t v : support_) {
-      if (v >= coarse) break;  // support_ is sorted; finer entries are this level's outputs
-      reached_.insert(reached_.end(), r.stencils.begin() + r.offsets[v], r.stencils.begin() + r.offsets[v + 1]);
-    }
-    std::sort(reached_.begin(), reached_.end());
-    reached_.erase(std::unique(reached_.begin(), reached_.end()), reached_.end());
-    for (uint32_t k : reached_) {
-      // The whole stencil in its own order, zeros included: the same sum a
-      // dense refinement makes.
-      double sum = 0.0;
-      for (uint32_t e = s.offsets[k]; e < s.offsets[k + 1]; ++e) sum += s.weights[e] * values_[s.indices[e]];
-      values_[coarse + k] = sum;
-      support_.push_back(coarse + k);
+    ++generation_;
+    const size_t inputs = support_.size();
+    for (size_t n = 0; n < inputs; ++n) {
+      const uint32_t v = support_[n];
+      for (uint32_t e = r.offsets[v]; e < r.offsets[v + 1]; ++e) {
+        const uint32_t k = r.stencils[e];
+        if (seen_[k] == generation_) continue;
+        seen_[k] = generation_;
+        // The whole stencil in its own order, zeros included: the same sum a
+        // dense refinement makes.
+        double sum = 0.0;
+        for (uint32_t t = s.offsets[k]; t < s.offsets[k + 1]; ++t) sum += s.weights[t] * values_[s.indices[t]];
+        values_[coarse + k] = sum;
+        support_.push_back(coarse + k);
+      }
     }
   }
 
@@ -79,7 +86,9 @@ class ImpulseRefiner {
   std::vector<StencilTable> stencils_;
   std::vector<StencilReaders> readers_;
   std::vector<double> values_;
-  std::vector<uint32_t> support_, reached_;
+  std::vector<uint32_t> support_;
+  std::vector<uint32_t> seen_;  // per stencil: the generation that evaluated it
+  uint32_t generation_ = 0;
 };
 
 }  // namespace
