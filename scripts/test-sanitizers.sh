@@ -14,4 +14,8 @@ export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
 BUILD_DIR="${SANITIZER_BUILD_DIR:-build-asan}"
 CC=clang CXX=clang++ BUILD_DIR="$BUILD_DIR" BUILD_TYPE=Debug \
   bash scripts/build.sh -DEQMESH_BUILD_TESTS=ON -DEQMESH_SANITIZE=ON -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" "$@"
-ctest --test-dir "$BUILD_DIR" --output-on-failure -j "$(nproc)" --timeout 1800
+# bench_quick (the benchmark script's smoke run: Python driving eqmesh, Draco and
+# gltfpack) is left to the plain build: under ASan it took 145 of the stage's 353 s
+# on the 2-core CI machine (session 14), and the eqmesh paths it drives are the
+# ones the CLI and glTF tests here already run.
+ctest --test-dir "$BUILD_DIR" --output-on-failure -j "$(nproc)" --timeout 1800 -E '^bench_quick$'
