@@ -6,14 +6,13 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Geometry>
 
-#include "mesh/mesh_io.h"
+#include "fold_probe_input.h"
 #include "mesh/semi_regular.h"
-#include "mesh/semi_regular_io.h"
-#include "mesh/triangle_bvh.h"
 #include "remesh/fan_kernel.h"
 #include "remesh/quality_checks.h"
 
@@ -21,39 +20,26 @@ using namespace eqmesh;
 
 int main(int argc, char** argv) {
   if (argc < 3) return 2;
-  auto input = ReadMesh(argv[1]);
-  auto srm = ReadSemiRegular(argv[2]);
-  if (!input.ok() || !srm.ok()) return 1;
-  auto bvh = TriangleBvh::Build(*input);
-  const int level = argc > 3 ? std::atoi(argv[3]) : srm->hierarchy.levels();
-  if (level < 0 || level > srm->hierarchy.levels()) return 2;
-  const auto& faces = srm->hierarchy.Faces(level);
-  std::vector<Vec3> pos = srm->positions;
-  std::vector<std::vector<uint32_t>> inc(pos.size());
-  for (uint32_t f = 0; f < faces.size(); ++f)
-    for (uint32_t v : faces[f]) inc[v].push_back(f);
-  auto folded = [&](uint32_t f) {
-    const Face& t = faces[f];
-    return FacesAwayFromInput(*bvh, *input, pos[t[0]], pos[t[1]], pos[t[2]]);
-  };
+  std::optional<FoldProbeInput> probe = LoadFoldProbeInput(argv[1], argv[2]);
+  if (!probe) return 1;
+  if (!probe->UseLevel(argc > 3 ? std::atoi(argv[3]) : probe->srm.hierarchy.levels())) return 2;
+  const Mesh* input = &probe->input;
+  const SemiRegularMesh* srm = &probe->srm;
+  const TriangleBvh* bvh = &probe->bvh;
+  const auto& faces = probe->faces();
+  std::vector<Vec3>& pos = probe->pos;
+  const std::vector<std::vector<uint32_t>>& inc = probe->inc;
+  auto folded = [&](uint32_t f) { return probe->Folded(f); };
   auto fan_folds = [&](uint32_t v) {
     int n = 0;
     for (uint32_t f : inc[v]) n += folded(f);
     return n;
   };
-  auto input_normal = [&](const Vec3& p) {
-    const ClosestPointResult cp = bvh->ClosestPoint(p);
-    const Face& g = input->faces[cp.face];
-    return Vec3((input->positions[g[1]] - input->positions[g[0]]).cross(input->positions[g[2]] - input->positions[g[0]]).normalized());
-  };
+  auto input_normal = [&](const Vec3& p) { return probe->InputNormalAt(p); };
   std::vector<std::vector<uint32_t>> input_inc(input->positions.size());
   for (uint32_t g = 0; g < input->faces.size(); ++g)
     for (uint32_t v : input->faces[g]) input_inc[v].push_back(g);
-  auto face_normal = [&](uint32_t g) {
-    const Face& t = input->faces[g];
-    const auto& x = input->positions;
-    return Vec3((x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]));
-  };
+  auto face_normal = [&](uint32_t g) { return probe->InputFaceNormal(g); };
   // Whether the input face under a folded face's centroid is itself part of a
   // pleat of the input (a vertex-neighbour facing more than 90 degrees away),
   // and how the folded face sits against the input's area-weighted normal

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 #include <map>
 #include <set>
 #include <vector>
@@ -15,41 +16,24 @@
 #include <Eigen/Geometry>
 #include <Eigen/Sparse>
 
-#include "mesh/mesh_io.h"
+#include "fold_probe_input.h"
 #include "mesh/semi_regular.h"
-#include "mesh/semi_regular_io.h"
-#include "mesh/triangle_bvh.h"
 #include "remesh/quality_checks.h"
 
 using namespace eqmesh;
 
 int main(int argc, char** argv) {
   if (argc < 3) return 2;
-  auto input = ReadMesh(argv[1]);
-  auto srm = ReadSemiRegular(argv[2]);
-  if (!input.ok() || !srm.ok()) return 1;
-  auto bvh = TriangleBvh::Build(*input);
-  const int level = srm->hierarchy.levels();
-  const auto& faces = srm->hierarchy.Faces(level);
-  std::vector<Vec3> pos = srm->positions;
-  std::vector<std::vector<uint32_t>> inc(pos.size());
-  for (uint32_t f = 0; f < faces.size(); ++f)
-    for (uint32_t v : faces[f]) inc[v].push_back(f);
-  auto folded = [&](uint32_t f) {
-    const Face& t = faces[f];
-    return FacesAwayFromInput(*bvh, *input, pos[t[0]], pos[t[1]], pos[t[2]]);
-  };
-  auto input_normal = [&](const Vec3& p) {
-    const ClosestPointResult cp = bvh->ClosestPoint(p);
-    const Face& g = input->faces[cp.face];
-    const auto& x = input->positions;
-    return Vec3((x[g[1]] - x[g[0]]).cross(x[g[2]] - x[g[0]]).normalized());
-  };
-  auto input_face_normal = [&](uint32_t g) {
-    const Face& t = input->faces[g];
-    const auto& x = input->positions;
-    return Vec3((x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]).normalized());
-  };
+  std::optional<FoldProbeInput> probe = LoadFoldProbeInput(argv[1], argv[2]);
+  if (!probe) return 1;
+  const SemiRegularMesh* srm = &probe->srm;
+  const TriangleBvh* bvh = &probe->bvh;
+  const auto& faces = probe->faces();
+  std::vector<Vec3>& pos = probe->pos;
+  const std::vector<std::vector<uint32_t>>& inc = probe->inc;
+  auto folded = [&](uint32_t f) { return probe->Folded(f); };
+  auto input_normal = [&](const Vec3& p) { return probe->InputNormalAt(p); };
+  auto input_face_normal = [&](uint32_t g) { return Vec3(probe->InputFaceNormal(g).normalized()); };
   std::vector<uint32_t> folds;
   for (uint32_t f = 0; f < faces.size(); ++f)
     if (folded(f)) folds.push_back(f);
