@@ -4,6 +4,7 @@
 # one table row per mesh plus the raw JSON lines.
 #
 # usage: bench/remesh_quality.sh [EQMESH_BINARY] [MESH_DIR] [OUT_DIR]
+# slivers: finest faces of quality 4*sqrt(3)*area / sum(edge^2) below 0.1 (not a bar).
 # Quality bars (bench/README_remesh.md): no flipped/degenerate faces, closed input
 # -> closed output of the same genus, normal_fraction >= 0.90, psnr_db >= 84,
 # base <= 0.3 % of input vertices, <= 30 s per million input triangles.
@@ -15,7 +16,7 @@ out_dir="${3:-${TMPDIR:-/tmp}/eqmesh_remesh_bench}"
 extra="${EQMESH_REMESH_ARGS:-}"
 mkdir -p "$out_dir"
 meshes=(stanford-bunny.obj horse.ply armadillo_50k.obj skull_50k.obj igea.ply dragon_vrip.ply.gz)
-printf '%-20s %8s %6s %5s %9s %7s %7s %7s %5s %6s %8s %s\n' mesh in_V base lvl out_V normal psnr s/Mtri flips genus time notes
+printf '%-20s %8s %6s %5s %9s %7s %7s %7s %5s %7s %6s %8s %s\n' mesh in_V base lvl out_V normal psnr s/Mtri flips slivers genus time notes
 for m in "${meshes[@]}"; do
   in="$mesh_dir/$m"
   [ -f "$in" ] || { echo "$m: missing, skipped"; continue; }
@@ -32,9 +33,9 @@ d = json.loads(sys.argv[1]); m = sys.argv[2]
 tris = d.get("input_faces") or 2 * d["input_vertices"]
 s_per_mtri = d["seconds"] / (tris / 1e6)
 genus_ok = d["input_closed_genus"] == d["output_closed_genus"] and d["input_boundary_loops"] == d["output_boundary_loops"]
-print("%-20s %8d %6d %5d %9d %7.3f %7.2f %7.1f %5d %6s %8.1f %s" % (
+print("%-20s %8d %6d %5d %9d %7.3f %7.2f %7.1f %5d %7d %6s %8.1f %s" % (
     m, d["input_vertices"], d["base_vertices"], d["levels"], d["output_vertices"], d["normal_fraction"],
     d.get("psnr_db", float("nan")), s_per_mtri, d.get("flipped_faces", -1) + d.get("degenerate_faces", 0),
-    "ok" if genus_ok else "DIFF", d["seconds"], "; ".join(d.get("notes", []))))
+    d.get("sliver_faces", -1), "ok" if genus_ok else "DIFF", d["seconds"], "; ".join(d.get("notes", []))))
 PY
 done

@@ -108,6 +108,7 @@ int RunRemesh(int argc, char** argv) {
     j["flipped_faces"] = folds->flipped_faces;
     j["degenerate_faces"] = folds->degenerate_faces;
   }
+  j["sliver_faces"] = eqmesh::CountSlivers(finest);
   const eqmesh::MeshDiagnosis in_diag = eqmesh::Diagnose(*mesh);
   const eqmesh::MeshDiagnosis out_diag = eqmesh::Diagnose(finest);
   j["input_closed_genus"] = in_diag.closed_genus;

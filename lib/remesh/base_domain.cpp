@@ -79,12 +79,6 @@ void ClampIntoTriangle(std::array<double, 3>* bary) {
   for (double& w : *bary) w = sum > 0.0 ? w / sum : 1.0 / 3.0;
 }
 
-double Quality(const Vec3& a, const Vec3& b, const Vec3& c) {
-  const double denom = (b - a).squaredNorm() + (c - b).squaredNorm() + (a - c).squaredNorm();
-  if (!(denom > 0.0)) return 0.0;
-  return 2.0 * std::sqrt(3.0) * (b - a).cross(c - a).norm() / denom;
-}
-
 class Simplifier {
  public:
   Simplifier(const Mesh& mesh, const TriangleBvh& bvh, const std::vector<uint8_t>& is_boundary);
@@ -348,7 +342,7 @@ std::vector<std::pair<double, uint32_t>> Simplifier::Candidates(uint32_t v, cons
     for (size_t m = 0; m < wedges; ++m) {
       const size_t m1 = (m + 1) % d;
       if (m == p || m1 == p) continue;
-      worst = std::min(worst, Quality(pos_[ring.verts[p]], pos_[ring.verts[m]], pos_[ring.verts[m1]]));
+      worst = std::min(worst, TriangleQuality(pos_[ring.verts[p]], pos_[ring.verts[m]], pos_[ring.verts[m1]]));
     }
     order.push_back({-worst, p});
   }
@@ -436,7 +430,7 @@ bool Simplifier::GeometryAllows(uint32_t v, size_t p, const Ring& ring, const st
   for (size_t m = 0; m < wedges; ++m) {
     const Vec3& a = pos_[ring.verts[m]];
     const Vec3& b = pos_[ring.verts[(m + 1) % d]];
-    worst_old = std::min(worst_old, Quality(pos_[v], a, b));
+    worst_old = std::min(worst_old, TriangleQuality(pos_[v], a, b));
   }
   for (size_t m = 0; m < wedges; ++m) {
     const size_t m1 = (m + 1) % d;
@@ -449,7 +443,7 @@ bool Simplifier::GeometryAllows(uint32_t v, size_t p, const Ring& ring, const st
     const double ln = n_new.norm(), lo = n_old.norm();
     if (!(ln > 0.0)) return false;
     if (lo > 0.0 && n_old.dot(n_new) < kMinNormalCos * lo * ln) return false;
-    const double q = Quality(pos_[u], a, b);
+    const double q = TriangleQuality(pos_[u], a, b);
     if (q < kMinQuality && q < worst_old) return false;
   }
   // Last, once every cheap test passed: a closest-point query per wedge.
@@ -722,7 +716,7 @@ bool Simplifier::FlipValid(const Flip& k, double* error) const {
     const Vec3 n = (p1 - p0).cross(p2 - p0);
     if (n.dot(n_old) < kMinNormalCos * n.norm() * n_old.norm()) return false;
     if (n.dot(facing[i]) < 0.0 || FacesAwayFromInput(p0, p1, p2)) return false;
-    worst = std::min(worst, Quality(p0, p1, p2));
+    worst = std::min(worst, TriangleQuality(p0, p1, p2));
   }
   *error = error_after;
   return worst >= kMinQuality;

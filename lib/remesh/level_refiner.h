@@ -71,10 +71,12 @@ class LevelRefiner {
   struct PlacementScore {
     size_t folds = 0;
     bool lopsided = false;
+    double shape = 0.0;  // ShapeAround: larger is better
     double error = 0.0;
     bool operator<(const PlacementScore& o) const {
       if (folds != o.folds) return folds < o.folds;
       if (lopsided != o.lopsided) return !lopsided;
+      if (shape != o.shape) return shape > o.shape;
       return error < o.error;
     }
   };
@@ -89,6 +91,8 @@ class LevelRefiner {
   bool Folded(uint32_t child, double* error = nullptr) const;
   std::array<uint32_t, 6> FacesAround(uint32_t k) const;
   size_t FoldsAround(uint32_t k, double* error = nullptr) const;
+  double ChildQuality(uint32_t child) const;
+  double ShapeAround(uint32_t k) const;
   void ForwardMapDemoted();
   std::array<std::array<Vec3d, 3>, 4> Children(uint32_t f) const;
   ParamPoint Relocate(uint32_t f, uint32_t x) const;

@@ -106,6 +106,19 @@ std::array<uint32_t, 6> LevelRefiner::FacesAround(uint32_t k) const {
   return {l + e.left_slot, l + (e.left_slot + 1) % 3, l + 3, r + e.right_slot, r + (e.right_slot + 1) % 3, r + 3};
 }
 
+double LevelRefiner::ChildQuality(uint32_t child) const {
+  const Face& t = h_.Faces(j_ + 1)[child];
+  return TriangleQuality(FinePosition(t[0]), FinePosition(t[1]), FinePosition(t[2]));
+}
+
+// The worst quality of the six faces around odd vertex k, capped at
+// kSliverQuality: placements that keep every face above it tie.
+double LevelRefiner::ShapeAround(uint32_t k) const {
+  double worst = kSliverQuality;
+  for (uint32_t f : FacesAround(k)) worst = std::min(worst, ChildQuality(f));
+  return worst;
+}
+
 size_t LevelRefiner::FoldsAround(uint32_t k, double* error) const {
   size_t n = 0;
   for (uint32_t f : FacesAround(k)) n += Folded(f, error);
@@ -127,6 +140,7 @@ LevelRefiner::PlacementScore LevelRefiner::ScorePlacement(uint32_t k) const {
   PlacementScore s;
   s.folds = FoldsAround(k, &s.error);
   s.lopsided = Lopsidedness(k) > kMaxLopsidedness;
+  s.shape = ShapeAround(k);
   return s;
 }
 
@@ -134,11 +148,13 @@ LevelRefiner::PlacementScore LevelRefiner::ScorePlacement(uint32_t k) const {
 // pierced from folded predictions), and so does a vertex placed next to an end
 // of its edge: where the parameterization is compressed the edges around it
 // then never shrink (armadillo claws: 0.02 of the diagonal from level 2 to 5).
-// So each level is cleaned before the next: an odd vertex of a folded face, or
-// one within kMaxLopsidedness of an end of its edge, tries its other admissible
-// hits, the parametric midpoint and the surface point closest to its
-// neighbours' average, and keeps the best ScorePlacement. Departure from Guskov
-// et al., who take the hit closest to the prediction.
+// So each level is cleaned before the next: an odd vertex of a folded face or a
+// sliver (kSliverQuality), or one within kMaxLopsidedness of an end of its
+// edge, tries its other admissible hits, the parametric midpoint and the
+// surface point closest to its neighbours' average, and keeps the best
+// ScorePlacement (folds, then lopsidedness, then the worst face shape up to
+// kSliverQuality, then error). Departure from Guskov et al., who take the hit
+// closest to the prediction.
 std::vector<uint32_t> LevelRefiner::RepairPlacements() {
   const size_t nf = dom_.faces().size();
   std::vector<uint8_t> suspect(choice_.size(), 0);
@@ -146,7 +162,11 @@ std::vector<uint32_t> LevelRefiner::RepairPlacements() {
   ParallelFor(nf, [&](size_t begin, size_t end, size_t) {
     for (size_t f = begin; f < end; ++f) {
       for (uint32_t c = 0; c < 4; ++c) {
-        if (!Folded(static_cast<uint32_t>(4 * f + c))) continue;
+        const uint32_t child = static_cast<uint32_t>(4 * f + c);
+        if (ChildQuality(child) < kSliverQuality) {
+          for (int i = 0; i < 3; ++i) suspect[dom_.EdgeOf(static_cast<uint32_t>(f), i)] = 1;
+        }
+        if (!Folded(child)) continue;
         touched[f] = 1;
         for (int i = 0; i < 3; ++i) suspect[dom_.EdgeOf(static_cast<uint32_t>(f), i)] = 1;
       }
@@ -162,7 +182,7 @@ std::vector<uint32_t> LevelRefiner::RepairPlacements() {
       if (!suspect[k] || dom_.Sides(k).right == kNoNeighbour) continue;
       suspect[k] = 0;
       const PlacementScore before = ScorePlacement(k);
-      if (before.folds == 0 && !before.lopsided) continue;
+      if (before.folds == 0 && !before.lopsided && before.shape == kSliverQuality) continue;
       if (TryAlternatives(k, before, &chart)) {
         changed = true;
         // The neighbours' faces changed too: look at them again.

@@ -67,6 +67,13 @@ StatusOr<FoldReport> CountFoldsAgainstInput(const Mesh& remesh, const Mesh& inpu
   return total;
 }
 
+size_t CountSlivers(const Mesh& mesh) {
+  const std::vector<Vec3>& x = mesh.positions;
+  size_t slivers = 0;
+  for (const Face& f : mesh.faces) slivers += TriangleQuality(x[f[0]], x[f[1]], x[f[2]]) < kSliverQuality;
+  return slivers;
+}
+
 NormalCount CountNormal(const SemiRegularHierarchy& hierarchy, const std::vector<VertexKind>& kinds) {
   NormalCount c;
   for (size_t v = hierarchy.NumVertices(0); v < kinds.size(); ++v) {

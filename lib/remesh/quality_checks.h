@@ -3,6 +3,7 @@
 // the face centroid) and degenerate faces (zero area at the input's scale).
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -16,6 +17,24 @@ struct FoldReport {
   size_t flipped_faces = 0;
   size_t degenerate_faces = 0;
 };
+
+// Triangle quality 4*sqrt(3)*area / (sum of squared edge lengths): 1 for an
+// equilateral triangle, 0 for a degenerate one.
+inline double TriangleQuality(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const double denom = (b - a).squaredNorm() + (c - b).squaredNorm() + (a - c).squaredNorm();
+  if (!(denom > 0.0)) return 0.0;
+  return 2.0 * std::sqrt(3.0) * (b - a).cross(c - a).norm() / denom;
+}
+
+// Faces of lower quality are slivers. The refinement's placement repair looks
+// for better-shaped placements of their odd vertices, because a sliver at one
+// level leaves slivers at every finer one (its corner children inherit its
+// shape), and bands of them at the finest levels are where folds sit. Chosen
+// by measurement (bench/README_remesh.md, session 15): 0.05-0.3 tried.
+inline constexpr double kSliverQuality = 0.1;
+
+// Faces of `mesh` with TriangleQuality below kSliverQuality.
+size_t CountSlivers(const Mesh& mesh);
 
 StatusOr<FoldReport> CountFoldsAgainstInput(const Mesh& remesh, const Mesh& input);
 
