@@ -93,6 +93,7 @@ class LevelRefiner {
   size_t FoldsAround(uint32_t k, double* error = nullptr) const;
   double ChildQuality(uint32_t child) const;
   double ShapeAround(uint32_t k) const;
+  double SliverBound() const;
   void ForwardMapDemoted();
   std::array<std::array<Vec3d, 3>, 4> Children(uint32_t f) const;
   ParamPoint Relocate(uint32_t f, uint32_t x) const;
@@ -116,6 +117,8 @@ class LevelRefiner {
   // demoted midpoints placed in 3D (DiamondParam, FineMidpoint) instead of
   // through charts.
   bool fine_ = false;
+  // RepairPlacements' SliverBound for this level.
+  double sliver_quality_ = 0.0;
 };
 
 }  // namespace eqmesh::remesh_internal
