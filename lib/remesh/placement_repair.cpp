@@ -1,5 +1,5 @@
 // Placement repair of one refinement (the departure described at
-// LevelRefiner::RepairPlacements): folded or lopsided odd vertices try other
+// LevelRefiner::RepairPlacements): folded, sliver or lopsided odd vertices try other
 // admissible positions before the next level is pierced from them.
 #include <algorithm>
 #include <Eigen/Geometry>
@@ -149,6 +149,15 @@ LevelRefiner::PlacementScore LevelRefiner::ScorePlacement(uint32_t k) const {
   return s;
 }
 
+// The bound below which this level's child faces count as slivers to mend:
+// kSliverQuality, or 0 (none) where more than kMaxSliverShare of them are.
+double LevelRefiner::SliverBound() const {
+  const size_t children = h_.Faces(j_ + 1).size();
+  size_t slivers = 0;
+  for (uint32_t child = 0; child < children; ++child) slivers += ChildQuality(child) < kSliverQuality;
+  return static_cast<double>(slivers) <= kMaxSliverShare * static_cast<double>(children) ? kSliverQuality : 0.0;
+}
+
 // Folds at a level multiply by four at every finer one (their children are
 // pierced from folded predictions), and so does a vertex placed next to an end
 // of its edge: where the parameterization is compressed the edges around it
@@ -160,15 +169,6 @@ LevelRefiner::PlacementScore LevelRefiner::ScorePlacement(uint32_t k) const {
 // ScorePlacement (folds, then lopsidedness, then the worst face shape up to
 // the sliver bound, then error). Departure from Guskov et al., who take the hit
 // closest to the prediction.
-// The bound below which this level's child faces count as slivers to mend:
-// kSliverQuality, or 0 (none) where more than kMaxSliverShare of them are.
-double LevelRefiner::SliverBound() const {
-  const size_t children = h_.Faces(j_ + 1).size();
-  size_t slivers = 0;
-  for (uint32_t child = 0; child < children; ++child) slivers += ChildQuality(child) < kSliverQuality;
-  return static_cast<double>(slivers) <= kMaxSliverShare * static_cast<double>(children) ? kSliverQuality : 0.0;
-}
-
 std::vector<uint32_t> LevelRefiner::RepairPlacements() {
   const size_t nf = dom_.faces().size();
   sliver_quality_ = SliverBound();
