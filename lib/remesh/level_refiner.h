@@ -93,7 +93,7 @@ class LevelRefiner {
   size_t FoldsAround(uint32_t k, double* error = nullptr) const;
   double ChildQuality(uint32_t child) const;
   double ShapeAround(uint32_t k) const;
-  double SliverBound() const;
+  double SliverBound(const std::vector<uint8_t>& slivers_in) const;
   void ForwardMapDemoted();
   std::array<std::array<Vec3d, 3>, 4> Children(uint32_t f) const;
   ParamPoint Relocate(uint32_t f, uint32_t x) const;

@@ -151,11 +151,12 @@ LevelRefiner::PlacementScore LevelRefiner::ScorePlacement(uint32_t k) const {
 
 // The bound below which this level's child faces count as slivers to mend:
 // kSliverQuality, or 0 (none) where more than kMaxSliverShare of them are.
-double LevelRefiner::SliverBound() const {
-  const size_t children = h_.Faces(j_ + 1).size();
+// slivers_in[f]: how many of level-j face f's children are below kSliverQuality.
+double LevelRefiner::SliverBound(const std::vector<uint8_t>& slivers_in) const {
   size_t slivers = 0;
-  for (uint32_t child = 0; child < children; ++child) slivers += ChildQuality(child) < kSliverQuality;
-  return static_cast<double>(slivers) <= kMaxSliverShare * static_cast<double>(children) ? kSliverQuality : 0.0;
+  for (uint8_t n : slivers_in) slivers += n;
+  const double children = 4.0 * static_cast<double>(slivers_in.size());
+  return static_cast<double>(slivers) <= kMaxSliverShare * children ? kSliverQuality : 0.0;
 }
 
 // Folds at a level multiply by four at every finer one (their children are
@@ -171,22 +172,27 @@ double LevelRefiner::SliverBound() const {
 // closest to the prediction.
 std::vector<uint32_t> LevelRefiner::RepairPlacements() {
   const size_t nf = dom_.faces().size();
-  sliver_quality_ = SliverBound();
   std::vector<uint8_t> suspect(choice_.size(), 0);
   std::vector<uint8_t> touched(nf, 0);  // level-j faces whose children may be folded
+  std::vector<uint8_t> slivers_in(nf, 0);
   ParallelFor(nf, [&](size_t begin, size_t end, size_t) {
     for (size_t f = begin; f < end; ++f) {
       for (uint32_t c = 0; c < 4; ++c) {
         const uint32_t child = static_cast<uint32_t>(4 * f + c);
-        if (ChildQuality(child) < sliver_quality_) {
-          for (int i = 0; i < 3; ++i) suspect[dom_.EdgeOf(static_cast<uint32_t>(f), i)] = 1;
-        }
+        slivers_in[f] += ChildQuality(child) < kSliverQuality;
         if (!Folded(child)) continue;
         touched[f] = 1;
         for (int i = 0; i < 3; ++i) suspect[dom_.EdgeOf(static_cast<uint32_t>(f), i)] = 1;
       }
     }
   });
+  sliver_quality_ = SliverBound(slivers_in);
+  if (sliver_quality_ > 0.0) {
+    for (uint32_t f = 0; f < nf; ++f) {
+      if (!slivers_in[f]) continue;
+      for (int i = 0; i < 3; ++i) suspect[dom_.EdgeOf(f, i)] = 1;
+    }
+  }
   for (uint32_t k = 0; k < choice_.size(); ++k) {
     if (Lopsidedness(k) > kMaxLopsidedness) suspect[k] = 1;
   }
