@@ -22,7 +22,7 @@
 //    not create a triangle that faces away from the input (the remesh's fold
 //    test, quality_checks.h), nor one whose input vertices face away from it.
 //  * Interior base vertices of valence 3 at tips (their faces' angles summing
-//    to under 200°) get an opposite edge flipped when that is valid
+//    to under 300°) get an opposite edge flipped when that is valid
 //    (base_domain.cpp, RaiseValenceThree): they seeded almost every fold the
 //    untangler could not remove.
 //  * Boundary vertices (half-disc map) collapse only along their boundary, and
