@@ -805,7 +805,7 @@ double Simplifier::AngleSum(uint32_t v) const {
 // blob (flipped at a flat vertex, 331 degrees) went from 32 to 332 folds; with
 // it the CAD samples lose too (fandisk 76.0 -> 72.2 dB, rocker-arm 80.1 -> 78.7).
 // The limit was 200 degrees until session 16; at 300 the horse's last fold
-// goes (its base has valence-3 vertices of 226 and 257 degrees) and the fold
+// goes (a 257-degree valence-3 vertex of its base is flipped) and the fold
 // suite's bench runs go 54 -> 36 (bench/README_remesh.md).
 // Departure from MAPS, which has no flips. Boundary neighbourhoods are left
 // alone (their input vertices sit exactly on base boundary edges).
