@@ -64,7 +64,8 @@ class LevelRefiner {
   Vec3 FineMidpoint(uint32_t k, uint32_t* on_face) const;
   std::optional<RayHit> NearestHit(const Vec3& p, const Vec3& n, double reach) const;
   bool FacesAlong(uint32_t input_face, const Vec3& n) const;
-  Vec3 ForwardMap(uint32_t root, const Vec3d& u, const Vec3& fallback_near, Chart* chart, uint32_t* on_face) const;
+  std::optional<Vec3> ForwardMap(uint32_t root, const Vec3d& u, const Vec3& near, double reach, Chart* chart,
+                                 uint32_t* on_face) const;
   Vec3d EdgePointIn(uint32_t f, int i) const;
   bool ChildrenValid(uint32_t f) const;
   void DemoteInvalidFaces();

@@ -32,6 +32,17 @@ constexpr size_t kMaxChartFaces = 4096;
 // (dragon_vrip, 1.8M new vertices: over 10 CPU minutes in one level). A miss
 // falls back to the closest input point.
 constexpr size_t kMaxFineForwardChartFaces = 256;
+// A forward-mapped midpoint farther than this many edge lengths from its
+// butterfly prediction was found through an unfolding that overlaps another
+// patch (the chart's angles around a vertex of valence != 6 do not close), not
+// on the edge's own patch: FineMidpoint's surface point replaces it.
+// dragon_vrip, whose stalled base has thousands of such edges, had level-1
+// vertices 8 % of the diagonal from their edges, and the faces they spanned held
+// 90 % of the remesh's squared error (68.7 -> 74.6 dB with the bound). The
+// bench meshes reach 13.8 edge lengths at most (the bunny, level 3), and their
+// remeshes are unchanged by it; 4 and 8 cost bunny and armadillo slivers and
+// gave dragon_vrip the same PSNR (bench/README_remesh.md, session 17).
+constexpr double kMidpointReach = 16.0;
 // Rings of input triangles around a pleat where the fold scan always searches
 // (LevelRefiner::SurelyUnfolded). With 0 the scan already decided every face of
 // the bench meshes as the full search does; 1 is a margin (dragon_vrip, whose
@@ -141,9 +152,15 @@ bool LevelRefiner::InDiamond(const Vec3d& u, int slot) const {
   return std::min(u[a], u[b]) >= std::max(0.0, -u[c]);
 }
 
-// Surface point of a demoted midpoint of edge k at chart parameter u.
+// Surface point of a demoted midpoint of edge k at chart parameter u: the
+// forward map's, unless it found no input triangle there or one farther than
+// kMidpointReach edge lengths from the prediction; then FineMidpoint's.
 Vec3 LevelRefiner::MidpointPosition(uint32_t k, const Vec3d& u, Chart* chart, uint32_t* on_face) const {
-  return fine_ ? FineMidpoint(k, on_face) : ForwardMap(dom_.Sides(k).left, u, predicted_[k], chart, on_face);
+  if (fine_) return FineMidpoint(k, on_face);
+  const Edge& e = h_.OddEdge(j_, k);
+  const double reach = kMidpointReach * (pos_[e[0]] - pos_[e[1]]).norm();
+  const std::optional<Vec3> mapped = ForwardMap(dom_.Sides(k).left, u, predicted_[k], reach, chart, on_face);
+  return mapped ? *mapped : FineMidpoint(k, on_face);
 }
 
 EdgeChoice LevelRefiner::MidpointChoice(uint32_t k) const {
@@ -190,8 +207,9 @@ Vec3d LevelRefiner::DiamondParam(uint32_t k, const Vec3& x) const {
   return u;
 }
 
-// Non-normal vertex on a level finer than the input: pierce from the edge's
-// 3D midpoint, else take the closest surface point to it.
+// Non-normal vertex on a level finer than the input (and a coarser one whose
+// forward map failed): pierce from the edge's 3D midpoint, else take the
+// closest surface point to it.
 Vec3 LevelRefiner::FineMidpoint(uint32_t k, uint32_t* on_face) const {
   const Edge& e = h_.OddEdge(j_, k);
   const Vec3 m = 0.5 * (pos_[e[0]] + pos_[e[1]]);
@@ -259,9 +277,10 @@ EdgeChoice LevelRefiner::BoundaryPoint(uint32_t k) const {
 }
 
 // Surface point at chart parameter u of face `root`: the input triangle whose
-// chart image contains u.
-Vec3 LevelRefiner::ForwardMap(uint32_t root, const Vec3d& u, const Vec3& fallback_near, Chart* chart,
-                              uint32_t* on_face) const {
+// chart image contains u; none when there is no such triangle or the point lies
+// farther than `reach` from `near`.
+std::optional<Vec3> LevelRefiner::ForwardMap(uint32_t root, const Vec3d& u, const Vec3& near, double reach,
+                                             Chart* chart, uint32_t* on_face) const {
   chart->Reset(root);
   const Vec2 target = ToReference2d(u);
   double best = -1e300;
@@ -300,10 +319,8 @@ Vec3 LevelRefiner::ForwardMap(uint32_t root, const Vec3d& u, const Vec3& fallbac
     // a spike that no finer level removed).
     if (best >= -1e-9) break;
   }
-  if (best > -0.5) return best_point;
-  const ClosestPointResult cp = s_.bvh->ClosestPoint(fallback_near);
-  *on_face = cp.face;
-  return cp.found() ? cp.point : fallback_near;
+  if (best > -0.5 && (best_point - near).squaredNorm() <= reach * reach) return best_point;
+  return std::nullopt;
 }
 
 Vec3d LevelRefiner::EdgePointIn(uint32_t f, int i) const {
