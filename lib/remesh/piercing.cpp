@@ -39,7 +39,7 @@ constexpr size_t kMaxFineForwardChartFaces = 256;
 // dragon_vrip, whose stalled base has thousands of such edges, had level-1
 // vertices 8 % of the diagonal from their edges, and the faces they spanned held
 // 90 % of the remesh's squared error (68.7 -> 74.6 dB with the bound). The
-// bench meshes reach 13.8 edge lengths at most (the bunny, level 3), and their
+// bench meshes reach 13.8 edge lengths at most (the bunny, level 4), and their
 // remeshes are unchanged by it; 4 and 8 cost bunny and armadillo slivers and
 // gave dragon_vrip the same PSNR (bench/README_remesh.md, session 17).
 constexpr double kMidpointReach = 16.0;
