@@ -30,7 +30,7 @@ constexpr size_t kMaxChartFaces = 4096;
 // corners a few face rings away, and a miss (target outside every mapped
 // triangle) would otherwise grow the full chart for every such vertex
 // (dragon_vrip, 1.8M new vertices: over 10 CPU minutes in one level). A miss
-// falls back to the closest input point.
+// falls back to FineMidpoint's surface point.
 constexpr size_t kMaxFineForwardChartFaces = 256;
 // A forward-mapped midpoint farther than this many edge lengths from its
 // butterfly prediction was found through an unfolding that overlaps another
