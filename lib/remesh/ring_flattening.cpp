@@ -20,7 +20,10 @@ bool FlattenRing(const Vec3& center, const std::vector<Vec3>& ring, bool closed,
   const size_t d = ring.size();
   if (d < 2 || (closed && d < 3)) return false;
   const size_t wedges = closed ? d : d - 1;
-  std::vector<double> theta(wedges);
+  // Per thread and reused: the simplification flattens a ring per re-costed
+  // vertex, from every worker of its team.
+  thread_local std::vector<double> theta;
+  theta.resize(wedges);
   double total = 0.0, max_radius = 0.0;
   for (size_t m = 0; m < wedges; ++m) {
     theta[m] = AngleBetween(ring[m] - center, ring[(m + 1) % d] - center);
