@@ -4,6 +4,8 @@
 # one table row per mesh plus the raw JSON lines.
 #
 # usage: bench/remesh_quality.sh [EQMESH_BINARY] [MESH_DIR] [OUT_DIR]
+# EQMESH_REMESH_RUNS=N (default 1) remeshes each mesh N times and reports the run
+# with the median time (the outputs are identical; the VM's speed is not).
 # slivers: finest faces of quality 4*sqrt(3)*area / sum(edge^2) below 0.1 (not a bar).
 # Quality bars (bench/README_remesh.md): no flipped/degenerate faces, closed input
 # -> closed output of the same genus, normal_fraction >= 0.90, psnr_db >= 84,
@@ -14,6 +16,7 @@ eqmesh="${1:-$here/../build/tools/eqmesh}"
 mesh_dir="${2:-$here/../../shared/meshes/bench}"
 out_dir="${3:-${TMPDIR:-/tmp}/eqmesh_remesh_bench}"
 extra="${EQMESH_REMESH_ARGS:-}"
+runs="${EQMESH_REMESH_RUNS:-1}"
 mkdir -p "$out_dir"
 meshes=(stanford-bunny.obj horse.ply armadillo_50k.obj skull_50k.obj igea.ply dragon_vrip.ply.gz)
 printf '%-20s %8s %6s %5s %9s %7s %7s %7s %5s %7s %6s %8s %s\n' mesh in_V base lvl out_V normal psnr s/Mtri flips slivers genus time notes
@@ -21,15 +24,23 @@ for m in "${meshes[@]}"; do
   in="$mesh_dir/$m"
   [ -f "$in" ] || { echo "$m: missing, skipped"; continue; }
   out="$out_dir/${m%%.*}_remesh.ply"
-  # shellcheck disable=SC2086
-  if ! json=$("$eqmesh" remesh "$in" "$out" --json $extra 2>"$out_dir/${m%%.*}.err"); then
-    echo "$m: FAILED: $(tail -1 "$out_dir/${m%%.*}.err")"
-    continue
-  fi
-  echo "$json" > "$out_dir/${m%%.*}.json"
-  python3 - "$json" "$m" <<'PY'
+  jsons=()
+  for ((r = 1; r <= runs; r++)); do
+    # shellcheck disable=SC2086
+    if ! json=$("$eqmesh" remesh "$in" "$out" --json $extra 2>"$out_dir/${m%%.*}.err"); then
+      echo "$m: FAILED: $(tail -1 "$out_dir/${m%%.*}.err")"
+      continue 2
+    fi
+    jsons+=("$json")
+  done
+  printf '%s\n' "${jsons[@]}" > "$out_dir/${m%%.*}.json"
+  python3 - "$m" "${jsons[@]}" <<'PY'
 import json, sys
-d = json.loads(sys.argv[1]); m = sys.argv[2]
+m = sys.argv[1]
+runs = sorted((json.loads(a) for a in sys.argv[2:]), key=lambda d: d["seconds"])
+d = runs[len(runs) // 2]
+if len(runs) > 1:
+    d.setdefault("notes", []).append("median of %d runs (%.1f-%.1f s)" % (len(runs), runs[0]["seconds"], runs[-1]["seconds"]))
 tris = d.get("input_faces") or 2 * d["input_vertices"]
 s_per_mtri = d["seconds"] / (tris / 1e6)
 genus_ok = d["input_closed_genus"] == d["output_closed_genus"] and d["input_boundary_loops"] == d["output_boundary_loops"]
