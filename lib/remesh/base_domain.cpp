@@ -23,7 +23,8 @@ namespace eqmesh {
 namespace {
 
 constexpr uint32_t kNone = 0xffffffffu;
-// Threads that re-cost a collapse's ring (about 6 vertices): more would mostly wait.
+// Threads that re-cost a collapse's ring (about 6 vertices) and test its new fan
+// against the input (one closest-point query per wedge): more would mostly wait.
 constexpr int kTeamWorkers = 2;
 constexpr size_t kMaxValence = 12;
 // A collapse may not turn a face by more than ~80 degrees (no normal flips).
@@ -468,7 +469,7 @@ bool Simplifier::GeometryAllows(uint32_t v, size_t p, const Ring& ring, const st
     if (q < kMinQuality && q < worst_old) return false;
   }
   // Last, once every cheap test passed: a closest-point query per wedge, on the
-  // team (a fifth of the collapse loop's time on one thread, measured on igea).
+  // team (a fifth of the caller's time in the simplification before, igea).
   std::vector<uint32_t>& wedge_starts = collapse_.wedge_starts;
   wedge_starts.clear();
   for (size_t m = 0; m < wedges; ++m) {
