@@ -108,7 +108,7 @@ class Simplifier {
                       CostScratch* scratch) const;
   // Re-queues the vertices of a changed ring with fresh costs, computed on the
   // team (the pushes stay in ring order, so the queue does not depend on it).
-  void EnqueueRing(const std::vector<uint32_t>& verts, SpinTeam* team);
+  void EnqueueRing(const std::vector<uint32_t>& verts);
 
   bool TryCollapse(uint32_t v, uint32_t u, const Ring& ring);
   struct Flip;
@@ -151,7 +151,9 @@ class Simplifier {
     std::vector<uint8_t> away;           // and whether each faces away from the input
   };
   CollapseScratch collapse_;
-  SpinTeam* team_ = nullptr;  // Run's team while it runs
+  // Run's team while it runs: EnqueueRing and GeometryAllows (via TryCollapse)
+  // are only called from Run.
+  SpinTeam* team_ = nullptr;
   std::vector<CostScratch> team_scratch_;  // one per team worker
   std::vector<Vec3> normal_;  // area-weighted input vertex normals
   std::vector<uint32_t> loop_of_;
@@ -396,12 +398,12 @@ void Simplifier::EnqueueAll() {
   }
 }
 
-void Simplifier::EnqueueRing(const std::vector<uint32_t>& verts, SpinTeam* team) {
+void Simplifier::EnqueueRing(const std::vector<uint32_t>& verts) {
   for (uint32_t w : verts) {
     ++stamp_[w];
     candidates_[w].clear();
   }
-  team->Run(verts.size(), [&](size_t i, int worker) {
+  team_->Run(verts.size(), [&](size_t i, int worker) {
     const uint32_t w = verts[i];
     CostScratch& scratch = team_scratch_[static_cast<size_t>(worker)];
     if (!alive_[w] || !BuildRing(w, &scratch.ring)) return;
@@ -481,11 +483,7 @@ bool Simplifier::GeometryAllows(uint32_t v, size_t p, const Ring& ring, const st
     const size_t m = wedge_starts[i];
     away[i] = FacesAwayFromInput(pos_[u], pos_[ring.verts[m]], pos_[ring.verts[(m + 1) % d]]) ? 1 : 0;
   };
-  if (team_ != nullptr) {
-    team_->Run(wedge_starts.size(), test);
-  } else {
-    for (size_t i = 0; i < wedge_starts.size(); ++i) test(i, 0);
-  }
+  team_->Run(wedge_starts.size(), test);
   return std::none_of(away.begin(), away.end(), [](uint8_t a) { return a != 0; });
 }
 
@@ -686,7 +684,7 @@ void Simplifier::Run(size_t target, const ProgressFn& progress) {
       if (TryCollapse(v, cand.second, ring)) {
         // Only the stars of v's ring changed (their faces and buckets); every
         // other vertex keeps its cost.
-        EnqueueRing(ring.verts, &team);
+        EnqueueRing(ring.verts);
         done = true;
         break;
       }
