@@ -134,6 +134,16 @@ TEST(CompactBase, EveryPrefixAndCorruptedByteIsAnErrorOrAValidMesh) {
   }
 }
 
+TEST(CompactBase, BytesLeftOverAreRejected) {
+  auto enc = EncodeCompactBase(TwoComponents(), 10);
+  ASSERT_TRUE(enc.ok());
+  std::vector<uint8_t> padded = enc->bytes;
+  padded.push_back(0);
+  auto dec = DecodeCompactBase(padded.data(), padded.size(), 1u << 20, "test");
+  ASSERT_FALSE(dec.ok());
+  EXPECT_EQ(dec.status().code(), StatusCode::kCorruptStream);
+}
+
 std::vector<uint8_t> ChunkClaiming(uint64_t vertices, uint64_t faces, size_t payload_bytes) {
   ByteWriter w;
   w.PutVarint(vertices);

@@ -268,6 +268,49 @@ std::vector<uint8_t> WithMoreLevels(const std::vector<uint8_t>& stream, int leve
   return out;
 }
 
+// The stream with one `fill` byte appended to chunk `chunk` (-1: the base chunk,
+// j >= 0: level chunk j) and the header rewritten to claim it.
+std::vector<uint8_t> WithPaddedChunk(const std::vector<uint8_t>& stream, int chunk, uint8_t fill) {
+  size_t header_size = 0;
+  StreamHeader h = ReadStreamHeader(stream.data(), stream.size(), &header_size).value();
+  size_t end = header_size + h.base_size;
+  if (chunk < 0) {
+    ++h.base_size;
+  } else {
+    end += h.kept_size;
+    for (int j = 0; j <= chunk; ++j) end += h.level_sizes[static_cast<size_t>(j)];
+    ++h.level_sizes[static_cast<size_t>(chunk)];
+  }
+  std::vector<uint8_t> out = WriteStreamHeader(h);
+  out.insert(out.end(), stream.begin() + static_cast<std::ptrdiff_t>(header_size),
+             stream.begin() + static_cast<std::ptrdiff_t>(end));
+  out.push_back(fill);
+  out.insert(out.end(), stream.begin() + static_cast<std::ptrdiff_t>(end), stream.end());
+  return out;
+}
+
+// Every range-coded chunk is consumed exactly (ext_spec A.4.1), so a byte the
+// header counts but no symbol reads is refused (the spec's "level chunk with bytes
+// left over"). Not for the zerotree coder, whose embedded chunk may end anywhere,
+// nor for Draco base chunks.
+TEST(DecodeSafety, ChunksWithBytesLeftOverAreRejected) {
+  for (const Sample& sample : Samples()) {
+    if (sample.name.rfind("zerotree", 0) == 0) continue;
+    SCOPED_TRACE(sample.name);
+    size_t header_size = 0;
+    const StreamHeader h = ReadStreamHeader(sample.bytes.data(), sample.bytes.size(), &header_size).value();
+    ASSERT_TRUE(Decode(sample.bytes.data(), sample.bytes.size()).ok());
+    for (int chunk = h.has_compact_base() ? -1 : 0; chunk < h.levels; ++chunk) {
+      for (const uint8_t fill : {uint8_t{0}, uint8_t{0xA5}}) {
+        const std::vector<uint8_t> bad = WithPaddedChunk(sample.bytes, chunk, fill);
+        auto mesh = Decode(bad.data(), bad.size());
+        ASSERT_FALSE(mesh.ok()) << "chunk " << chunk << " fill " << int{fill};
+        EXPECT_EQ(mesh.status().code(), StatusCode::kCorruptStream) << mesh.status().ToString();
+      }
+    }
+  }
+}
+
 // More levels than the data holds: refused (corrupt or over the format limits),
 // level by level, whatever the filler.
 TEST(DecodeSafety, HeaderClaimingMoreLevelsIsRejected) {

@@ -375,6 +375,26 @@ TEST(EqDecoder, EveryTruncatedPrefixIsRejected) {
   }
 }
 
+// A finished chunk is consumed exactly (ext_spec A.4.1), so bytes after it are
+// refused rather than silently ignored.
+TEST(EqDecoder, BytesLeftOverAreRejected) {
+  const SemiRegularHierarchy h = IcoHierarchy(3);
+  auto layout = BuildEqLevelLayout(h, 2);
+  ASSERT_TRUE(layout.ok());
+  for (double step : {1e-2, 1e-4}) {
+    const Coded a = EncodeOrDie(*layout, SyntheticCoefficients(h, 2, 5), LambdaForStep(step));
+    ASSERT_TRUE(Decode(*layout, a.bytes.data(), a.bytes.size()).ok());
+    for (const uint8_t extra : {uint8_t{0x00}, uint8_t{0x5a}, uint8_t{0xff}}) {
+      std::vector<uint8_t> padded = a.bytes;
+      padded.push_back(extra);
+      auto d = Decode(*layout, padded.data(), padded.size());
+      ASSERT_FALSE(d.ok()) << "step " << step << " extra " << int{extra};
+      EXPECT_EQ(d.status().code(), StatusCode::kCorruptStream);
+      EXPECT_NE(d.status().message().find("left over"), std::string::npos) << d.status().ToString();
+    }
+  }
+}
+
 TEST(EqDecoder, GarbageAndBitFlipsNeverCrash) {
   const SemiRegularHierarchy h = IcoHierarchy(4);
   auto layout = BuildEqLevelLayout(h, 3);

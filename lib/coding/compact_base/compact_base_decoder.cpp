@@ -44,7 +44,8 @@ class ChunkReader {
     while (dec_.ok() && dec_.DecodeBit(&models_.more_components) != 0) {
       if (!SeedComponent() || !GrowComponent()) return false;
     }
-    return dec_.ok() && state_.faces().size() == head_.faces && quanta_.size() == head_.vertices;
+    return dec_.ok() && dec_.ConsumedAll() && state_.faces().size() == head_.faces &&
+           quanta_.size() == head_.vertices;
   }
 
   Mesh TakeMesh() {

@@ -79,6 +79,10 @@ class RangeDecoder {
   void SetError() { error_ = true; }
   // Bytes consumed so far (may exceed size only when !ok()).
   size_t position() const { return pos_; }
+  // Whether every byte of the input was consumed: a chunk the encoder finished
+  // holds exactly 4 + (renormalisation shifts) bytes (ext_spec A.4.1), so bytes
+  // left over after its last symbol mean a corrupt or padded chunk.
+  bool ConsumedAll() const { return pos_ == size_; }
 
  private:
   uint8_t NextByte();
