@@ -54,10 +54,7 @@ StatusOr<std::vector<Vec3>> DecodeUniform(const LevelCodingParams& params, uint3
   if (!rc.ok()) {
     return CorruptStream("level chunk " + std::to_string(j) + ": uniform coder data corrupt or truncated");
   }
-  if (!rc.ConsumedAll()) {
-    return CorruptStream("level chunk " + std::to_string(j) + ": " + std::to_string(size - rc.position()) +
-                         " bytes left over after its last coefficient");
-  }
+  EQMESH_RETURN_IF_ERROR(rc.CheckConsumedAll("level chunk " + std::to_string(j)));
   return out;
 }
 

@@ -271,15 +271,16 @@ std::vector<uint8_t> WithMoreLevels(const std::vector<uint8_t>& stream, int leve
 // The stream with one `fill` byte appended to chunk `chunk` (-1: the base chunk,
 // j >= 0: level chunk j) and the header rewritten to claim it.
 std::vector<uint8_t> WithPaddedChunk(const std::vector<uint8_t>& stream, int chunk, uint8_t fill) {
+  const StreamInfo info = ReadStreamInfo(stream.data(), stream.size()).value();
   size_t header_size = 0;
   StreamHeader h = ReadStreamHeader(stream.data(), stream.size(), &header_size).value();
-  size_t end = header_size + h.base_size;
+  uint64_t end = info.base_offset + info.base_size;
   if (chunk < 0) {
     ++h.base_size;
   } else {
-    end += h.kept_size;
-    for (int j = 0; j <= chunk; ++j) end += h.level_sizes[static_cast<size_t>(j)];
-    ++h.level_sizes[static_cast<size_t>(chunk)];
+    const size_t j = static_cast<size_t>(chunk);
+    end = info.level_offsets[j] + info.level_sizes[j];
+    ++h.level_sizes[j];
   }
   std::vector<uint8_t> out = WriteStreamHeader(h);
   out.insert(out.end(), stream.begin() + static_cast<std::ptrdiff_t>(header_size),
@@ -297,10 +298,9 @@ TEST(DecodeSafety, ChunksWithBytesLeftOverAreRejected) {
   for (const Sample& sample : Samples()) {
     if (sample.name.rfind("zerotree", 0) == 0) continue;
     SCOPED_TRACE(sample.name);
-    size_t header_size = 0;
-    const StreamHeader h = ReadStreamHeader(sample.bytes.data(), sample.bytes.size(), &header_size).value();
+    const StreamInfo info = ReadStreamInfo(sample.bytes.data(), sample.bytes.size()).value();
     ASSERT_TRUE(Decode(sample.bytes.data(), sample.bytes.size()).ok());
-    for (int chunk = h.has_compact_base() ? -1 : 0; chunk < h.levels; ++chunk) {
+    for (int chunk = info.has_compact_base ? -1 : 0; chunk < info.levels; ++chunk) {
       for (const uint8_t fill : {uint8_t{0}, uint8_t{0xA5}}) {
         const std::vector<uint8_t> bad = WithPaddedChunk(sample.bytes, chunk, fill);
         auto mesh = Decode(bad.data(), bad.size());

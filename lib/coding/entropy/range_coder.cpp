@@ -104,6 +104,11 @@ RangeDecoder::RangeDecoder(const uint8_t* data, size_t size) : data_(data), size
   for (int i = 0; i < 4; ++i) code_ = (code_ << 8) | NextByte();
 }
 
+Status RangeDecoder::CheckConsumedAll(const std::string& where) const {
+  if (ConsumedAll()) return Status::Ok();
+  return CorruptStream(where + ": " + std::to_string(size_ - pos_) + " bytes left over after its last symbol");
+}
+
 uint8_t RangeDecoder::NextByte() {
   if (pos_ >= size_ || data_ == nullptr) {
     error_ = true;

@@ -13,7 +13,10 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
+
+#include "core/status.h"
 
 namespace eqmesh {
 
@@ -83,6 +86,9 @@ class RangeDecoder {
   // holds exactly 4 + (renormalisation shifts) bytes (ext_spec A.4.1), so bytes
   // left over after its last symbol mean a corrupt or padded chunk.
   bool ConsumedAll() const { return pos_ == size_; }
+  // Ok when ConsumedAll(); else a corrupt-stream error naming `where` and the
+  // bytes left over.
+  Status CheckConsumedAll(const std::string& where) const;
 
  private:
   uint8_t NextByte();

@@ -62,9 +62,7 @@ StatusOr<std::vector<std::array<int64_t, 3>>> DecodeEqLevelQuanta(const EqLevelL
   const std::vector<int64_t> normal = DecodeNormalStream(layout, side, &dec, &models);
   const std::vector<int64_t> tangential = DecodeTangentialStream(layout, side, &dec, &models);
   if (!dec.ok()) return CorruptStream(where + ": coefficient data truncated or corrupt");
-  if (!dec.ConsumedAll()) {
-    return CorruptStream(where + ": " + std::to_string(size - dec.position()) + " bytes left over after its last coefficient");
-  }
+  EQMESH_RETURN_IF_ERROR(dec.CheckConsumedAll(where));
   std::vector<std::array<int64_t, 3>> out(layout.size());
   for (size_t i = 0; i < layout.size(); ++i) {
     out[layout.scan[i]] = {normal[i], tangential[2 * i], tangential[2 * i + 1]};
