@@ -38,6 +38,7 @@ struct EncodeArgs {
   std::string original_path;
   int levels = -1, base_vertices = -1;
   int threads = 0;
+  double min_psnr = 60.0;
   bool strict = false;
   bool repair = false, measure = false, json = false, fallback = false;
   bool draco_base = false;
@@ -54,6 +55,20 @@ struct Source {
 
 double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Below this, a --bpv stream is worth a warning when the remesh itself is the
+// limit (and not the rate): the input is then no good fit for eqmesh.
+constexpr double kLowCeilingDb = 70.0;
+
+void WarnOnLowCeiling(const SemiRegularMesh& remeshed, const Mesh& original) {
+  const StatusOr<double> ceiling = RemeshCeilingPsnr(remeshed, original);
+  if (ceiling.ok() && *ceiling < kLowCeilingDb) {
+    std::fprintf(stderr,
+                 "eqmesh encode: warning: the remesh itself measures only %.2f dB against the input (below %.0f dB): "
+                 "no rate gets closer; Draco may serve this mesh better\n",
+                 *ceiling, kLowCeilingDb);
+  }
 }
 
 EncodeOptions ToEncodeOptions(const EncodeArgs& a) {
@@ -130,6 +145,7 @@ int EncodeToGlb(const EncodeArgs& a) {
   options.remesh.repair = a.repair;
   options.fallback = a.fallback;
   options.strict = a.strict;
+  options.min_psnr = a.min_psnr;
   const auto start = std::chrono::steady_clock::now();
   auto report = gltf::ConvertToCompressedGltf(a.in_path, a.out_path, options);
   if (!report.ok()) {
@@ -240,6 +256,10 @@ int RunEncode(int argc, char** argv) {
   app.add_flag("--strict", a.strict,
                ".glb output: fail when any triangle primitive cannot be compressed (default: keep it "
                "unchanged and warn; the run fails anyway when none could be compressed)");
+  app.add_option("--min-psnr", a.min_psnr,
+                 ".glb output: leave a primitive unchanged (with a warning) when its decoded stream measures "
+                 "below this many dB against it (default 60; 0: no floor)")
+      ->check(CLI::Range(0.0, 300.0));
   app.add_option("--threads", a.threads, "worker threads, 0 = all cores (the output does not depend on it)")
       ->check(CLI::Range(0, 256));
   try {
@@ -283,9 +303,8 @@ int RunEncode(int argc, char** argv) {
     std::fprintf(stderr, "eqmesh encode: warning: nearest stream is %.3f bpv, %.1f %% from the %.3f bpv target\n",
                  report.bpv, 100.0 * std::abs(report.bpv - a.bpv) / a.bpv, a.bpv);
   }
-  if (a.psnr > 0 && report.psnr_db < a.psnr) {
-    std::fprintf(stderr, "eqmesh encode: warning: best PSNR %.2f dB is below the %.2f dB target\n",
-                 report.psnr_db, a.psnr);
+  if (a.bpv > 0 && report.psnr_measured && report.psnr_db < kLowCeilingDb && source->original) {
+    WarnOnLowCeiling(source->remeshed, *source->original);
   }
   if (a.json) {
     std::printf("%s\n", ToJson(a, remesh_report, report, search, remesh_seconds, encode_seconds).dump(2).c_str());

@@ -1,6 +1,8 @@
 // Level-count search over truncated streams (see level_count_search.h).
 #include "coding/level_count_search.h"
 
+#include <algorithm>
+#include <cstdio>
 #include <string>
 #include <utility>
 
@@ -46,6 +48,13 @@ StatusOr<double> CeilingPsnr(const SemiRegularMesh& mesh, int levels, const Mesh
 // meter's sampling spread (about 0.01 dB at kRankingSamples).
 constexpr double kCeilingMarginDb = 0.05;
 
+Status TargetOutOfReach(double target, double best, const std::string& what) {
+  char text[160];
+  std::snprintf(text, sizeof(text), "PSNR target %.2f dB is out of reach: %s measures %.2f dB", target,
+                what.c_str(), best);
+  return Status(StatusCode::kTargetOutOfReach, text);
+}
+
 struct Candidate {
   std::vector<uint8_t> bytes;
   EncodeReport report;
@@ -78,18 +87,23 @@ StatusOr<Candidate> ScanLevels(const SemiRegularMesh& mesh, const EncodeOptions&
   const int top = mesh.hierarchy.levels();
   Candidate best, previous;
   bool have_best = false, have_previous = false;
+  bool some_ceiling_reaches = false;
   for (int k = top > 0 ? 1 : 0; k <= top; ++k) {
     ReportProgress(options.progress, "levels " + std::to_string(k) + "/" + std::to_string(top),
                    static_cast<double>(k) / static_cast<double>(top + 1));
-    if (options.target_psnr > 0 && k < top) {
+    if (options.target_psnr > 0 && (k < top || !some_ceiling_reaches)) {
       // A level count whose uncoded geometry misses the target cannot meet it:
       // one measurement instead of a whole lambda search (most of a PSNR-target
       // encode's time went to such hopeless searches at the coarse counts).
+      // When every coarser count missed, the whole remesh is measured too: a
+      // target above it fails at once instead of after a futile search.
       EQMESH_ASSIGN_OR_RETURN(const double ceiling, CeilingPsnr(mesh, k, *options.original));
       if (ceiling + kCeilingMarginDb < options.target_psnr) {
         out->trials.push_back({k, 0.0, ceiling, 0, false, false});
+        if (k == top) return TargetOutOfReach(options.target_psnr, ceiling, "the remesh itself");
         continue;
       }
+      some_ceiling_reaches = true;
     }
     EQMESH_ASSIGN_OR_RETURN(Candidate c, EncodeTruncated(mesh, k, options));
     const bool feasible = options.target_psnr <= 0 || c.report.psnr_db >= options.target_psnr;
@@ -105,14 +119,18 @@ StatusOr<Candidate> ScanLevels(const SemiRegularMesh& mesh, const EncodeOptions&
     have_previous = true;
   }
   if (!have_best) {
-    // No level count meets the PSNR target: the last (finest) one is the closest.
-    out->chosen_levels = top;
-    return previous;
+    double closest = 0.0;
+    for (const LevelCountTrial& t : out->trials) closest = std::max(closest, t.psnr_db);
+    return TargetOutOfReach(options.target_psnr, closest, "the best stream");
   }
   return best;
 }
 
 }  // namespace
+
+StatusOr<double> RemeshCeilingPsnr(const SemiRegularMesh& mesh, const Mesh& original) {
+  return CeilingPsnr(mesh, mesh.hierarchy.levels(), original);
+}
 
 StatusOr<SemiRegularMesh> TruncateLevels(const SemiRegularMesh& mesh, int levels) {
   const SemiRegularHierarchy& h = mesh.hierarchy;

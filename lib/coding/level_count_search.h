@@ -46,9 +46,15 @@ struct LevelCountReport {
 // `mesh` truncated to its first `levels` levels (positions, kinds, hierarchy).
 StatusOr<SemiRegularMesh> TruncateLevels(const SemiRegularMesh& mesh, int levels);
 
+// PSNR of the whole remesh, uncoded, against `original` (at the ranking sample
+// count): no stream of it can measure higher.
+StatusOr<double> RemeshCeilingPsnr(const SemiRegularMesh& mesh, const Mesh& original);
+
 // Encode() with the level count chosen as above. Without a bpv or PSNR target, or
 // without options.original, this is Encode() on all levels. The report's PSNR is
-// always measured when the search ran.
+// always measured when the search ran. A PSNR target that no stream meets is a
+// kTargetOutOfReach error naming the best PSNR measured (the uncoded remesh's
+// when even that misses it): the caller never gets a stream short of its target.
 StatusOr<std::vector<uint8_t>> EncodeChoosingLevels(const SemiRegularMesh& mesh,
                                                     const EncodeOptions& options,
                                                     EncodeReport* report = nullptr,

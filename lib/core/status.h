@@ -21,6 +21,7 @@ enum class StatusCode {
   kUnsupportedFeature,   // valid input using something not implemented
   kResourceLimit,        // a declared count exceeds what we agree to allocate
   kInternal,             // a bug: an invariant of our own code failed
+  kTargetOutOfReach,     // a quality target the input cannot meet (says the best reached)
 };
 
 const char* StatusCodeName(StatusCode code);
@@ -93,6 +94,7 @@ inline const char* StatusCodeName(StatusCode code) {
     case StatusCode::kUnsupportedFeature: return "UNSUPPORTED_FEATURE";
     case StatusCode::kResourceLimit: return "RESOURCE_LIMIT";
     case StatusCode::kInternal: return "INTERNAL";
+    case StatusCode::kTargetOutOfReach: return "TARGET_OUT_OF_REACH";
   }
   return "UNKNOWN";
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 
@@ -34,9 +35,17 @@ StatusOr<CompressedGeometry> CompressWithEqmesh(const ConvertOptions& options, c
   EncodeOptions codec = options.codec;
   codec.input_vertices = CountReferencedVertices(mesh);
   codec.original = &mesh;
+  if (options.min_psnr > 0) codec.measure_psnr = true;
   EncodeReport encode_report;
   CompressedGeometry out;
   EQMESH_ASSIGN_OR_RETURN(out.stream, EncodeChoosingLevels(remeshed, codec, &encode_report));
+  if (options.min_psnr > 0 && encode_report.psnr_db < options.min_psnr) {
+    EQMESH_ASSIGN_OR_RETURN(const double ceiling, RemeshCeilingPsnr(remeshed, mesh));
+    char text[200];
+    std::snprintf(text, sizeof(text), "decoded PSNR %.2f dB is below the %.2f dB floor (--min-psnr; the remesh "
+                  "itself measures %.2f dB)", encode_report.psnr_db, options.min_psnr, ceiling);
+    return Status(StatusCode::kTargetOutOfReach, text);
+  }
   EQMESH_ASSIGN_OR_RETURN(out.chunk_lengths, EqmeshStreamLayout()(out.stream.data(), out.stream.size()));
   // Placeholder counts and bounds come from the decoded data (spec rule 6).
   EQMESH_ASSIGN_OR_RETURN(out.decoded, Decode(out.stream.data(), out.stream.size()));

@@ -29,6 +29,10 @@ struct ConvertOptions {
   // fails, writing nothing, when `strict` or when no primitive at all could be
   // compressed (the output would only be a re-packed copy of the input).
   bool strict = false;
+  // A primitive whose decoded stream measures below this PSNR against the
+  // primitive (dB, the `eqmesh compare` meter) is left unchanged, as one that
+  // cannot be compressed: a broken remesh is never shipped. 0: no floor.
+  double min_psnr = 60.0;
 };
 
 // The remesher + encoder as a GeometryCompressor (also measures the decoded PSNR

@@ -36,8 +36,9 @@ constexpr double kMinNormalCos = 0.17;
 constexpr double kMinQuality = 0.08;
 // Quality floor in that division, so a degenerate fan stays finite.
 constexpr double kQualityFloor = 1e-3;
-// Cost of a collapse that would fold the base against the input: refused.
-constexpr double kFoldedCost = std::numeric_limits<double>::infinity();
+// Cost of a collapse that would fold the base against the input or take an
+// input vertex beyond the error bound: refused.
+constexpr double kRefusedCost = std::numeric_limits<double>::infinity();
 // RaiseValenceThree flips only at tips: valence-3 vertices whose faces' angles
 // at them sum to less than this (radians; 300 degrees, a flat vertex has 360).
 constexpr double kPi = 3.14159265358979323846;
@@ -61,6 +62,7 @@ struct CostScratch {
   std::vector<Vec2> z, chart;
   std::vector<std::pair<double, size_t>> order;  // targets by fan quality
   Ring ring;                                     // of the vertex being re-costed
+  uint32_t centre = 0;                           // the vertex Candidates costs
 };
 
 struct QueueEntry {
@@ -84,13 +86,15 @@ void ClampIntoTriangle(std::array<double, 3>* bary) {
 
 class Simplifier {
  public:
-  Simplifier(const Mesh& mesh, const TriangleBvh& bvh, const std::vector<uint8_t>& is_boundary);
+  Simplifier(const Mesh& mesh, const TriangleBvh& bvh, const std::vector<uint8_t>& is_boundary,
+             double max_error_share);
   void Run(size_t target, const ProgressFn& progress);
   void RaiseValenceThree();
   BaseDomain Extract() const;
 
  private:
-  void InitLoops();
+  void InitLoops(const MeshTopology& topology);
+  void InitErrorBounds(const MeshTopology& topology, double max_error_share);
   bool BuildRing(uint32_t v, Ring* ring) const;
   // Sorted, without repeats, into *out (storage reused).
   void Neighbours(uint32_t v, std::vector<uint32_t>* out) const;
@@ -156,6 +160,9 @@ class Simplifier {
   SpinTeam* team_ = nullptr;
   std::vector<CostScratch> team_scratch_;  // one per team worker
   std::vector<Vec3> normal_;  // area-weighted input vertex normals
+  // Squared bound on the distance between an input vertex and its image on the
+  // base, per vertex (the bound of its component); infinite when unbounded.
+  std::vector<double> max_error2_;
   std::vector<uint32_t> loop_of_;
   std::vector<size_t> loop_size_;
   std::vector<std::vector<uint32_t>> bucket_;  // removed input vertices mapped into each face
@@ -164,7 +171,8 @@ class Simplifier {
   size_t alive_count_ = 0;
 };
 
-Simplifier::Simplifier(const Mesh& mesh, const TriangleBvh& bvh, const std::vector<uint8_t>& is_boundary)
+Simplifier::Simplifier(const Mesh& mesh, const TriangleBvh& bvh, const std::vector<uint8_t>& is_boundary,
+                       double max_error_share)
     : pos_(mesh.positions), bvh_(bvh), input_(mesh), boundary_(is_boundary), faces_(mesh.faces) {
   const size_t n = pos_.size();
   face_alive_.assign(faces_.size(), 1);
@@ -183,16 +191,37 @@ Simplifier::Simplifier(const Mesh& mesh, const TriangleBvh& bvh, const std::vect
     const Vec3 a = (pos_[f[1]] - pos_[f[0]]).cross(pos_[f[2]] - pos_[f[0]]);
     for (uint32_t c : f) normal_[c] += a;
   }
-  InitLoops();
+  const MeshTopology topology(mesh);
+  InitLoops(topology);
+  InitErrorBounds(topology, max_error_share);
 }
 
-void Simplifier::InitLoops() {
+// Each component is bounded by its own diagonal, so a small part beside a large
+// one (a bone of a skeleton) keeps its shape too.
+void Simplifier::InitErrorBounds(const MeshTopology& topology, double max_error_share) {
+  max_error2_.assign(pos_.size(), std::numeric_limits<double>::infinity());
+  if (!(max_error_share > 0.0)) return;
+  const std::vector<uint32_t>& face_component = topology.FaceComponents();
+  std::vector<BoundingBox> boxes(topology.num_components());
+  std::vector<uint8_t> seen(topology.num_components(), 0);
+  for (size_t f = 0; f < faces_.size(); ++f) {
+    BoundingBox& box = boxes[face_component[f]];
+    for (uint32_t c : faces_[f]) {
+      if (!seen[face_component[f]]) box = {pos_[c], pos_[c]};
+      seen[face_component[f]] = 1;
+      box.min = box.min.cwiseMin(pos_[c]);
+      box.max = box.max.cwiseMax(pos_[c]);
+    }
+  }
+  for (size_t f = 0; f < faces_.size(); ++f) {
+    const double bound = max_error_share * boxes[face_component[f]].Diagonal();
+    for (uint32_t c : faces_[f]) max_error2_[c] = bound * bound;
+  }
+}
+
+void Simplifier::InitLoops(const MeshTopology& topology) {
   loop_of_.assign(pos_.size(), kNone);
-  Mesh m;
-  m.positions = pos_;
-  m.faces = faces_;
-  const MeshTopology topo(m);
-  for (const BoundaryLoop& loop : topo.BoundaryLoops()) {
+  for (const BoundaryLoop& loop : topology.BoundaryLoops()) {
     for (uint32_t v : loop.vertices) loop_of_[v] = static_cast<uint32_t>(loop_size_.size());
     loop_size_.push_back(loop.vertices.size());
   }
@@ -290,7 +319,8 @@ double Simplifier::CollapseCost(size_t p, const Ring& ring, double worst_quality
   facing.assign(fan.size(), Vec3::Zero());
   const double q = std::max(worst_quality, kQualityFloor);
   const double scale = 1.0 / (q * q * q);
-  const double worst_bound = bound / scale;
+  const double max_error2 = max_error2_[scratch->centre];
+  const double worst_bound = std::min(bound / scale, max_error2);
   double worst = 0.0;
   for (size_t i = 0; i < items.size(); ++i) {
     const Vec2 rel = chart[i] - z[p];
@@ -311,12 +341,13 @@ double Simplifier::CollapseCost(size_t p, const Ring& ring, double worst_quality
     }
     if (!fan.empty()) facing[home] += normals[i];
     worst = std::max(worst, (pu + offset - items[i]).squaredNorm());
-    if (worst > worst_bound) break;  // already costlier than the bound: a lower bound is enough
+    if (worst > worst_bound) break;  // refused, or costlier than the bound: a lower bound is enough
   }
+  if (worst > max_error2) return kRefusedCost;
   // A fan triangle that faces away from the input vertices it would carry folds
   // the base; every remesh level below it would inherit the fold.
   for (size_t ti = 0; ti < fan.size(); ++ti) {
-    if (fan[ti].to_a.cross(fan[ti].to_b).dot(facing[ti]) < 0.0) return kFoldedCost;
+    if (fan[ti].to_a.cross(fan[ti].to_b).dot(facing[ti]) < 0.0) return kRefusedCost;
   }
   return worst * scale;
 }
@@ -325,6 +356,7 @@ void Simplifier::Candidates(uint32_t v, const Ring& ring, bool exact, CostScratc
                             std::vector<std::pair<double, uint32_t>>* out_ptr) const {
   std::vector<std::pair<double, uint32_t>>& out = *out_ptr;
   out.clear();
+  scratch->centre = v;
   std::vector<Vec3>& ring_pos = scratch->ring_pos;
   ring_pos.clear();
   for (uint32_t k : ring.verts) ring_pos.push_back(pos_[k]);
@@ -375,7 +407,7 @@ void Simplifier::Candidates(uint32_t v, const Ring& ring, bool exact, CostScratc
   for (const auto& [neg_quality, p] : order) {
     const double bound = exact || out.empty() ? 1e300 : out.front().first;
     const double cost = CollapseCost(p, ring, -neg_quality, bound, scratch);
-    if (cost == kFoldedCost) continue;
+    if (cost == kRefusedCost) continue;
     out.push_back({cost, ring.verts[p]});
     if (cost < out.front().first) std::swap(out.front(), out.back());
   }
@@ -731,9 +763,10 @@ Vec2 Unfold(const Vec3& a, const Vec3& b, const Vec3& p, bool above) {
 }  // namespace
 
 // The flip unfolds to a convex quad, the new faces neither turn over nor face
-// away from the input or from the input vertices they will carry, and their
-// quality is at least kMinQuality. *error: the largest squared distance of
-// those input vertices to their images on the new faces.
+// away from the input or from the input vertices they will carry, their quality
+// is at least kMinQuality, and those input vertices stay within the error
+// bound. *error: the largest squared distance of those input vertices to their
+// images on the new faces.
 bool Simplifier::FlipValid(const Flip& k, double* error) const {
   const Vec2 ca = Vec2::Zero();
   if (!(Orient2d(k.cv, ca, k.cx) > 0.0) || !(Orient2d(k.cv, k.cx, k.cb) > 0.0)) return false;
@@ -761,7 +794,7 @@ bool Simplifier::FlipValid(const Flip& k, double* error) const {
     worst = std::min(worst, TriangleQuality(p0, p1, p2));
   }
   *error = error_after;
-  return worst >= kMinQuality;
+  return worst >= kMinQuality && error_after <= max_error2_[k.v];
 }
 
 // The 3D image of chart point q on new face `side` of the flip (0: (v, a, x), 1: (v, x, b)).
@@ -922,7 +955,7 @@ StatusOr<BaseDomain> BuildBaseDomain(const Mesh& mesh, const TriangleBvh& bvh,
                                      const std::vector<uint8_t>& is_boundary, const BaseDomainOptions& options) {
   if (mesh.faces.empty()) return InvalidMesh("no faces to simplify");
   if (is_boundary.size() != mesh.positions.size()) return InternalError("boundary flags size mismatch");
-  Simplifier s(mesh, bvh, is_boundary);
+  Simplifier s(mesh, bvh, is_boundary, options.max_error_share);
   s.Run(options.target_vertices, options.progress);
   s.RaiseValenceThree();
   BaseDomain base = s.Extract();

@@ -16,6 +16,15 @@
 //    MAPS's area + curvature weights: quadric error (Garland & Heckbert 1997,
 //    used before) removes small protrusions first and leaves slivers along
 //    cylinders, and both cost the remesh 5-15 dB at claws, ears and legs.
+//  * The simplification stops where the base could no longer carry the
+//    surface, not at a vertex count: a collapse is refused when an input
+//    vertex of its star would end up farther than a bound (a share of its
+//    component's diagonal) from its image on the new fan. Collapses across a
+//    thin part, around a handle or over a protrusion move vertices by about
+//    its size, so those regions keep their base vertices while flat and gently
+//    curved regions simplify on; the base size is an outcome (Remesh reports
+//    it). This is the simplification envelope of Cohen et al. (SIGGRAPH 1996)
+//    measured through the MAPS map instead of by offset surfaces.
 //  * A collapse must pass the link condition, keep valences in [3, 12], keep
 //    every boundary loop at >= 3 vertices, give positively oriented fan
 //    triangles in the flat chart, not turn any face by more than ~80° in 3D, and
@@ -50,7 +59,11 @@ struct BaseDomain {
 };
 
 struct BaseDomainOptions {
-  size_t target_vertices = 0;  // stop once this few vertices remain (or no collapse is valid)
+  // Stop once this few vertices remain (or no collapse is allowed).
+  size_t target_vertices = 0;
+  // A collapse may not take any input vertex farther than this share of its
+  // component's bounding-box diagonal from its image on the base. 0: no bound.
+  double max_error_share = 0.0;
   ProgressFn progress;
 };
 

@@ -5,11 +5,13 @@
 #include <algorithm>
 #include <string>
 #include <chrono>
+#include <limits>
 #include <cmath>
 
 #include "mesh/mesh_topology.h"
 #include "mesh/repair.h"
 #include "mesh/triangle_bvh.h"
+#include "metrics/surface_distance.h"
 #include "remesh/base_domain.h"
 #include "remesh/input_check.h"
 #include "remesh/quality_checks.h"
@@ -19,22 +21,43 @@
 namespace eqmesh {
 namespace {
 
-// Automatic levels stop once the estimated PSNR (input vertices to the remesh)
-// reaches this, which leaves margin for the Metro PSNR bar of 84 dB ...
+// Automatic levels refine until the finest level has at least this many times
+// the input's vertices (dense scans: no input vertex's detail falls between
+// remesh vertices) ...
+constexpr double kAutoMinVertexFactor = 8.0;
+// ... and its mean edge is at most this share of the bounding-box diagonal. The
+// PSNR is relative to the diagonal, and on faceted inputs (2k-30k vertices) the
+// remesh error is set by how finely it crosses the input's creases, whatever
+// the input's vertex count: 80 dB needs about this resolution there.
+constexpr double kAutoMaxEdgeShare = 1.0 / 500.0;
+// Past that, a level is added only while the last one measures below this
+// PSNR against the input (Metro, kLevelPsnrSamples samples each way) and gains
+// at least kAutoMinGainDb over the one before: faceted inputs need more than
+// the density rule, dense scans rarely do ...
 constexpr double kAutoTargetPsnrDb = 86.0;
-// ... or once a level gains less than this ...
 constexpr double kAutoMinGainDb = 0.5;
-// ... or before the finest level would exceed this multiple of the input vertices.
-constexpr double kAutoMaxVertexFactor = 24.0;
-// ... or beyond this many vertices at all: the codec's level search never keeps
-// such levels below 4 bpv, and memory grows ~400 bytes per remesh vertex.
+constexpr uint64_t kLevelPsnrSamples = 100'000;
+// ... and only when the added level stays below this many vertices: measuring a
+// level costs a search tree over it, a fifth of a dense scan's remesh time.
+constexpr uint64_t kAutoMaxMeasuredVertices = 1'000'000;
+// Refinement stops before the finest level would exceed this multiple of the
+// input vertices ...
+constexpr double kAutoMaxVertexFactor = 128.0;
+// ... or this many vertices at all: the codec's level search never keeps such
+// levels below 4 bpv, and memory grows ~400 bytes per remesh vertex.
 constexpr uint64_t kAutoMaxVertices = 3'000'000;
 constexpr int kMaxLevels = 10;
 // Components with fewer vertices are carried as they are (kept_exactly).
 constexpr size_t kMinComponentVertices = 20;
-// Automatic base size: this fraction of the input vertices, but at least
-// kMinBasePerComponent per remeshed component.
-constexpr double kAutoBaseFraction = 0.003;
+// Automatic base: the simplification stops where an input vertex would end up
+// farther than this share of its component's diagonal from the base
+// (base_domain.h) ...
+constexpr double kBaseErrorShare = 0.02;
+// ... or once this fraction of the input vertices is left, whichever comes
+// first (but never below kMinBasePerComponent per remeshed component). On dense
+// scans the bound is loose, and bases of this size remesh them best
+// (bench/README_remesh.md).
+constexpr double kMinBaseFraction = 0.003;
 constexpr size_t kMinBasePerComponent = 8;
 
 struct Prepared {
@@ -133,10 +156,17 @@ StatusOr<Prepared> Prepare(const Mesh& input, const RemeshOptions& options, Reme
   return out;
 }
 
-size_t AutoBaseTarget(const Prepared& p, const RemeshOptions& options) {
-  if (options.base_vertices > 0) return static_cast<size_t>(options.base_vertices);
-  const size_t by_fraction = static_cast<size_t>(kAutoBaseFraction * static_cast<double>(p.input_vertices));
-  return std::max(by_fraction, kMinBasePerComponent * p.components_remeshed);
+BaseDomainOptions BaseOptions(const Prepared& p, const RemeshOptions& options) {
+  BaseDomainOptions base;
+  base.progress = options.progress;
+  if (options.base_vertices > 0) {
+    base.target_vertices = static_cast<size_t>(options.base_vertices);
+    return base;
+  }
+  const size_t by_fraction = static_cast<size_t>(kMinBaseFraction * static_cast<double>(p.input_vertices));
+  base.target_vertices = std::max(by_fraction, kMinBasePerComponent * p.components_remeshed);
+  base.max_error_share = kBaseErrorShare;
+  return base;
 }
 
 double EstimatedPsnrDb(double diagonal, double rms) {
@@ -144,15 +174,55 @@ double EstimatedPsnrDb(double diagonal, double rms) {
   return 20.0 * std::log10(diagonal / rms);
 }
 
-bool StopRefining(const RemeshOptions& options, int levels_done, const std::vector<double>& psnr,
-                  uint64_t next_vertices, size_t input_vertices) {
-  if (options.levels >= 0) return levels_done >= options.levels;
-  if (levels_done >= kMaxLevels) return true;
-  if (static_cast<double>(next_vertices) > kAutoMaxVertexFactor * static_cast<double>(input_vertices)) return true;
-  if (next_vertices > kAutoMaxVertices) return true;
-  if (psnr.empty()) return false;
-  if (psnr.back() >= kAutoTargetPsnrDb) return true;
-  return psnr.size() >= 3 && psnr.back() - psnr[psnr.size() - 2] < kAutoMinGainDb;
+// What the automatic level count aims for (kAutoMinVertexFactor, kAutoMaxEdgeShare).
+struct DensityTarget {
+  uint64_t input_vertices = 0;
+  // Faces whose mean edge over the input's area is kAutoMaxEdgeShare of the
+  // diagonal: an equilateral triangle of edge e has area sqrt(3)/4 e^2.
+  double faces = 0.0;
+};
+
+DensityTarget AutoDensityTarget(const Mesh& surface, size_t input_vertices) {
+  double area = 0.0;
+  for (const Face& f : surface.faces) {
+    area += 0.5 * (surface.positions[f[1]] - surface.positions[f[0]])
+                      .cross(surface.positions[f[2]] - surface.positions[f[0]])
+                      .norm();
+  }
+  const double edge = kAutoMaxEdgeShare * BoundingBoxDiagonal(surface);
+  return {input_vertices, edge > 0.0 ? 4.0 * area / (std::sqrt(3.0) * edge * edge) : 0.0};
+}
+
+struct LevelSize {
+  uint64_t vertices = 0, faces = 0;
+};
+
+enum class LevelDecision { kStop, kRefine, kMeasureFirst };
+
+// Whether to add a level after `levels_done` (see the constants at the top).
+LevelDecision NextLevel(const RemeshOptions& options, int levels_done, LevelSize current, LevelSize next,
+                        const DensityTarget& target) {
+  if (options.levels >= 0) return levels_done >= options.levels ? LevelDecision::kStop : LevelDecision::kRefine;
+  if (levels_done >= kMaxLevels) return LevelDecision::kStop;
+  const double input = static_cast<double>(target.input_vertices);
+  if (static_cast<double>(next.vertices) > kAutoMaxVertexFactor * input) return LevelDecision::kStop;
+  if (next.vertices > kAutoMaxVertices) return LevelDecision::kStop;
+  const bool dense = levels_done > 0 && static_cast<double>(current.vertices) >= kAutoMinVertexFactor * input &&
+                     static_cast<double>(current.faces) >= target.faces;
+  if (!dense) return LevelDecision::kRefine;
+  return next.vertices > kAutoMaxMeasuredVertices ? LevelDecision::kStop : LevelDecision::kMeasureFirst;
+}
+
+// Metro PSNR of the level against the surface it remeshes (a sampled estimate:
+// kLevelPsnrSamples per direction).
+double MeasureLevelPsnr(const Mesh& surface, const std::vector<Vec3>& positions, const std::vector<Face>& faces) {
+  Mesh level;
+  level.positions = positions;
+  level.faces = faces;
+  CompareOptions compare;
+  compare.samples = kLevelPsnrSamples;
+  const StatusOr<SurfaceDistance> d = CompareSurfaces(surface, level, compare);
+  return d.ok() ? d->psnr_db : 0.0;
 }
 
 // One complete refinement of the base domain.
@@ -163,6 +233,7 @@ struct Refinement {
   std::vector<VertexKind> kinds;
   int levels = 0;
   std::vector<double> estimated_psnr_db_per_level;
+  double measured_psnr_db = 0.0;  // of the last level measured before refining on (0: none)
   std::vector<uint32_t> finest_folded_faces;
   std::vector<StencilTable> stencils;  // of each refinement, for the untangling
 };
@@ -190,7 +261,7 @@ struct RefineContext {
   const InputSurface& surface;
   const RemeshOptions& options;
   double diagonal;
-  size_t input_vertices;
+  DensityTarget density;
 };
 
 StatusOr<Refinement> RefineAllLevels(const RefineContext& c) {
@@ -205,10 +276,21 @@ StatusOr<Refinement> RefineAllLevels(const RefineContext& c) {
   std::vector<ParamPoint> params = c.base.params;
   // One level at a time (Refine gives what Build would), so no level is built twice.
   EQMESH_ASSIGN_OR_RETURN(r.hierarchy, SemiRegularHierarchy::Build(nb, c.base.faces, 0));
+  double previous_psnr = -std::numeric_limits<double>::infinity();
   while (true) {
-    const uint64_t next_vertices = r.levels == 0 ? nb + 3ull * c.base.faces.size() / 2
-                                                 : static_cast<uint64_t>(r.positions.size()) * 4;
-    if (StopRefining(c.options, r.levels, r.estimated_psnr_db_per_level, next_vertices, c.input_vertices)) break;
+    const uint64_t faces = r.hierarchy.Faces(r.levels).size();
+    const LevelSize current{r.positions.size(), faces};
+    // Each face gains three edge midpoints, each shared by two faces (closed
+    // surfaces; boundary edges make it a little more).
+    const LevelSize next{current.vertices + 3 * faces / 2, 4 * faces};
+    const LevelDecision decision = NextLevel(c.options, r.levels, current, next, c.density);
+    if (decision == LevelDecision::kStop) break;
+    if (decision == LevelDecision::kMeasureFirst) {
+      const double psnr = MeasureLevelPsnr(c.surface_mesh, r.positions, r.hierarchy.Faces(r.levels));
+      r.measured_psnr_db = psnr;
+      if (psnr >= kAutoTargetPsnrDb || psnr - previous_psnr < kAutoMinGainDb) break;
+      previous_psnr = psnr;
+    }
     EQMESH_RETURN_IF_ERROR(r.hierarchy.Refine());
     ReportProgress(c.options.progress, std::string("pierce level ") + std::to_string(r.levels + 1), 0.0);
     LevelStats stats;
@@ -267,20 +349,19 @@ StatusOr<SemiRegularMesh> Remesh(const Mesh& input, const RemeshOptions& options
   for (Vec3& p : prep.surface.positions) p *= scale;
   EQMESH_ASSIGN_OR_RETURN(TriangleBvh bvh, TriangleBvh::Build(prep.surface));
   report.stage_seconds.prepare = seconds_since_lap();
-  BaseDomainOptions base_options;
-  base_options.target_vertices = AutoBaseTarget(prep, options);
-  base_options.progress = options.progress;
+  const BaseDomainOptions base_options = BaseOptions(prep, options);
   EQMESH_ASSIGN_OR_RETURN(BaseDomain base, BuildBaseDomain(prep.surface, bvh, prep.boundary, base_options));
   report.base_vertices = base.base_to_input.size();
   report.stage_seconds.base_domain = seconds_since_lap();
-  if (report.base_vertices > base_options.target_vertices) {
+  if (options.base_vertices > 0 && report.base_vertices > base_options.target_vertices) {
     report.notes.push_back("simplification stalled at " + std::to_string(report.base_vertices) +
-                           " base vertices (target " + std::to_string(base_options.target_vertices) + ")");
+                           " base vertices (asked for " + std::to_string(base_options.target_vertices) + ")");
   }
 
   const InputSurface surface(prep.surface, bvh, prep.boundary);
   const double diagonal = BoundingBoxDiagonal(prep.surface);
-  const RefineContext context{base, prep.surface, surface, options, diagonal, prep.input_vertices};
+  const RefineContext context{base, prep.surface, surface, options, diagonal,
+                              AutoDensityTarget(prep.surface, prep.input_vertices)};
   EQMESH_ASSIGN_OR_RETURN(Refinement best, RefineAllLevels(context));
   report.stage_seconds.refine = seconds_since_lap();
   UntangleFinestLevel(best.hierarchy, surface, best.finest_folded_faces, std::move(best.stencils), &best.positions,

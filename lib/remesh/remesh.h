@@ -20,11 +20,13 @@
 namespace eqmesh {
 
 struct RemeshOptions {
-  // Subdivision levels. -1: automatic (refine until the estimated remesh PSNR
-  // reaches kAutoTargetPsnrDb or stops improving; see remesh.cpp). Range [-1, 10].
+  // Subdivision levels. -1: automatic (refine until the finest level has 8x the
+  // input's vertices and a mean edge of 1/500 of the bounding-box diagonal,
+  // within 64x the input's vertices and 3 million; see remesh.cpp). Range [-1, 10].
   int levels = -1;
-  // Base vertices to aim for. -1: automatic, 0.3 % of the input vertices, but at
-  // least a few per component so the base can carry the shape.
+  // Base vertices to aim for. -1: automatic: simplify while every input vertex
+  // stays within 2 % of its component's diagonal of the base, down to at most
+  // 0.3 % of the input vertices (see remesh.cpp and base_domain.h).
   int base_vertices = -1;
   // Run RepairForRemeshing first instead of refusing non-manifold input.
   bool repair = false;
