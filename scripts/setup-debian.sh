@@ -8,16 +8,22 @@ PACKAGES=(
   build-essential cmake ninja-build pkg-config git
   libtinygltf-dev libdraco-dev draco libeigen3-dev
   libgtest-dev googletest libcli11-dev nlohmann-json3-dev zlib1g-dev libstb-dev
-  gltfpack gzip python3 time gnuplot-nox
+  gltfpack gzip python3 time
   clang libclang-rt-14-dev
 )
-# Optional extras for the validator and the benchmark plots (issue 5/6 tooling).
+# EQMESH_SETUP_TESTS=1 (scripts/test.sh sets it): gnuplot, which the benchmark
+# smoke test needs for its R-D plots; the demo does without.
+if [[ "${EQMESH_SETUP_TESTS:-0}" == "1" ]]; then
+  PACKAGES+=(gnuplot-nox)
+fi
+# EQMESH_SETUP_EXTRAS=1: the Khronos glTF-Validator (npm) that the glTF tests run
+# when present, and gnuplot for the benchmark's R-D plots (bench/run_bench.py).
 if [[ "${EQMESH_SETUP_EXTRAS:-0}" == "1" ]]; then
   PACKAGES+=(nodejs npm gnuplot-nox)
 fi
-# The web loader's wasm build and real-browser test (issue 8, scripts/test-web.sh).
-# A flag of its own: the extras' Debian npm cannot join a node from elsewhere
-# (nodesource), while these packages can.
+# EQMESH_SETUP_WEB=1 (or the extras): the WebAssembly decoder's build and its test
+# in headless Chromium (scripts/test-web.sh). A flag of its own: the extras' Debian
+# npm cannot join a node from elsewhere (nodesource), while these packages can.
 if [[ "${EQMESH_SETUP_EXTRAS:-0}" == "1" || "${EQMESH_SETUP_WEB:-0}" == "1" ]]; then
   PACKAGES+=(emscripten chromium chromium-driver)
 fi

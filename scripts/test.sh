@@ -11,7 +11,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 STAGES="${EQMESH_TEST_STAGES:-build web sanitizers fuzz}"
 has_stage() { [[ " $STAGES " == *" $1 "* ]]; }
-bash scripts/setup-debian.sh
+EQMESH_SETUP_TESTS=1 bash scripts/setup-debian.sh
 # The Khronos glTF-Validator (npm, pinned in tests/gltf/validator/package-lock.json)
 # checks every GLB the glTF tests write; those tests skip when it is absent.
 if ! command -v npm >/dev/null 2>&1; then

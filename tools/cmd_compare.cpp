@@ -1,4 +1,4 @@
-// eqmesh compare ORIGINAL OTHER: Metro-style symmetric surface distance and
+// eqmesh compare IN OTHER: Metro-style symmetric surface distance and
 // PSNR (peak = ORIGINAL's bounding-box diagonal). See lib/metrics/surface_distance.h.
 #include <chrono>
 #include <cinttypes>
@@ -13,6 +13,7 @@
 #include "metrics/parallel_blocks.h"
 #include "metrics/surface_distance.h"
 #include "tools/command.h"
+#include "tools/gltf_info.h"
 
 namespace eqmesh::cli {
 namespace {
@@ -37,7 +38,7 @@ double SecondsSince(std::chrono::steady_clock::time_point start) {
 
 // Reads and validates one input; the error names the file exactly once.
 StatusOr<Mesh> LoadForCompare(const std::string& path) {
-  StatusOr<Mesh> mesh = ReadMesh(path);
+  StatusOr<Mesh> mesh = ReadMeshDecodingGltf(path);
   Status status = mesh.ok() ? ValidateForCompare(*mesh) : mesh.status();
   if (status.ok()) return mesh;
   if (status.message().find(path) == std::string::npos) status = status.WithContext(path);
@@ -97,12 +98,15 @@ void PrintTable(const CompareArgs& args, const CompareRun& run) {
 
 int RunCompare(int argc, char** argv) {
   CLI::App app{
-      "Metro-style surface distance between ORIGINAL and OTHER: area-uniform samples on each\n"
+      "Metro-style surface distance between IN and OTHER: area-uniform samples on each\n"
       "surface, distance to the closest point of the other. RMS = max of the two directions;\n"
-      "PSNR = 20 log10(bbox diagonal of ORIGINAL / RMS). Results do not depend on --threads."};
+      "PSNR = 20 log10(bbox diagonal of IN / RMS). Results do not depend on --threads."};
   CompareArgs args;
-  app.add_option("original", args.original, "reference mesh (its bbox diagonal is the PSNR peak)")->required();
-  app.add_option("other", args.other, "approximation to measure")->required();
+  app.add_option("IN", args.original,
+                 "reference mesh, e.g. the original (its bbox diagonal is the PSNR peak); any input format, "
+                 "a compressed glTF is decoded first")
+      ->required();
+  app.add_option("OTHER", args.other, "mesh to measure against IN (same formats)")->required();
   app.add_option("--samples", args.samples,
                  "samples per direction (default: 10 x larger vertex count, clamped to 1M..20M; limit 1e9)")
       ->check(CLI::NonNegativeNumber);  // else "-5" wraps to 2^64 - 5

@@ -11,6 +11,7 @@
 #include "mesh/mesh_io.h"
 #include "mesh/semi_regular_io.h"
 #include "tools/command.h"
+#include "tools/gltf_info.h"
 
 namespace eqmesh::cli {
 namespace {
@@ -36,7 +37,7 @@ int RunConvert(int argc, char** argv) {
   }
   if (IsSameFile(in, out)) return Fail("convert", out + ": is the input file; write the output elsewhere");
   ReadReport report;
-  StatusOr<Mesh> mesh = EndsWith(in, ".srm") ? ReadFinestLevel(in) : ReadMesh(in, &report);
+  StatusOr<Mesh> mesh = EndsWith(in, ".srm") ? ReadFinestLevel(in) : ReadMeshDecodingGltf(in, &report);
   if (!mesh.ok()) return Fail("convert", mesh.status().message());
   WriteOptions options;
   options.ply_double_positions = ply_double;

@@ -47,7 +47,7 @@ int DecodeGltf(const std::string& in_path, const std::string& out_path, int leve
 }
 
 int RunDecode(int argc, char** argv) {
-  CLI::App app{"Decode an eqmesh stream (.eqm) to a mesh", argv[0]};
+  CLI::App app{"Decode an eqmesh stream (.eqm) or a glTF with EXT_normal_mesh_compression (.glb) to a mesh", argv[0]};
   std::string in_path, out_path;
   int level = -1;
   bool json = false, allow_truncated = false;

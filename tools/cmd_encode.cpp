@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -135,6 +136,26 @@ nlohmann::json ToJson(const gltf::PrimitiveOutcome& p) {
   return j;
 }
 
+// One line for the file, one per compressed primitive. A --bpv or --psnr target
+// applies to each primitive's stream (bits per input vertex of that primitive);
+// the file adds the glTF JSON and container around the streams.
+void PrintGlbSummary(const std::string& out_path, const gltf::ConvertReport& report) {
+  uint64_t streams = 0;
+  for (const auto& p : report.primitives) streams += p.compressed ? p.stream_bytes : 0;
+  std::printf("%s: %llu bytes (%llu in streams), %zu primitive(s) compressed, %zu unchanged\n", out_path.c_str(),
+              static_cast<unsigned long long>(report.output_bytes), static_cast<unsigned long long>(streams),
+              report.compressed, report.unchanged);
+  for (const auto& p : report.primitives) {
+    if (!p.compressed) continue;
+    std::printf("  mesh %d primitive %d: %zu vertices -> %llu-byte stream, %.3f bits per input vertex, %d levels",
+                p.mesh, p.primitive, p.input_vertices, static_cast<unsigned long long>(p.stream_bytes),
+                p.input_vertices ? 8.0 * static_cast<double>(p.stream_bytes) / static_cast<double>(p.input_vertices) : 0.0,
+                p.levels);
+    if (p.psnr_db > 0) std::printf(", PSNR %.2f dB", p.psnr_db);
+    std::printf("\n");
+  }
+}
+
 // glTF output: every remeshable TRIANGLES primitive becomes an
 // EXT_normal_mesh_compression stream; the rest of the scene is kept.
 int EncodeToGlb(const EncodeArgs& a) {
@@ -146,8 +167,11 @@ int EncodeToGlb(const EncodeArgs& a) {
   options.fallback = a.fallback;
   options.strict = a.strict;
   options.min_psnr = a.min_psnr;
+  options.remesh.progress = TerminalProgress(a.json);
+  options.codec.progress = options.remesh.progress;
   const auto start = std::chrono::steady_clock::now();
   auto report = gltf::ConvertToCompressedGltf(a.in_path, a.out_path, options);
+  ClearTerminalProgress(options.remesh.progress);
   if (!report.ok()) {
     const std::string& m = report.status().message();
     return Fail(kName, m.find(a.in_path) == std::string::npos ? a.in_path + ": " + m : m);
@@ -171,20 +195,34 @@ int EncodeToGlb(const EncodeArgs& a) {
     j["seconds"] = SecondsSince(start);
     std::printf("%s\n", j.dump(2).c_str());
   } else {
-    std::printf("%s: %llu bytes, %zu primitive(s) compressed, %zu unchanged\n", a.out_path.c_str(),
-                static_cast<unsigned long long>(report->output_bytes), report->compressed, report->unchanged);
+    PrintGlbSummary(a.out_path, *report);
   }
   return 0;
+}
+
+// The stream and glTF store float32 positions, and a .glb output reads its input
+// through float32 accessors: rounding here makes `encode IN x.eqm` and `encode IN
+// x.glb` code the same geometry into the same stream. Coordinates beyond float32
+// range stay as they are, for the encoder to refuse by name.
+void RoundToFloat32(Mesh* mesh) {
+  for (Vec3& p : mesh->positions) {
+    for (int k = 0; k < 3; ++k) {
+      if (std::abs(p[k]) <= static_cast<double>(std::numeric_limits<float>::max())) {
+        p[k] = static_cast<double>(static_cast<float>(p[k]));
+      }
+    }
+  }
 }
 
 StatusOr<Source> RemeshInput(const EncodeArgs& a) {
   Source src;
   EQMESH_ASSIGN_OR_RETURN(Mesh mesh, ReadMesh(a.in_path));
+  RoundToFloat32(&mesh);
   RemeshOptions options;
   options.levels = a.levels;
   options.base_vertices = a.base_vertices;
   options.repair = a.repair;
-  options.progress = TerminalProgress();
+  options.progress = TerminalProgress(a.json);
   const auto start = std::chrono::steady_clock::now();
   auto remeshed = Remesh(mesh, options, &src.remesh);
   ClearTerminalProgress(options.progress);
@@ -224,7 +262,10 @@ int RunEncode(int argc, char** argv) {
   app.add_option("OUT", a.out_path, "output: .eqm stream, or .glb with EXT_normal_mesh_compression")->required();
   auto* bpv = app.add_option("--bpv", a.bpv, "target bits per input vertex (within 3 %)")
                   ->check(CLI::Range(1e-3, 1e4));
-  auto* lambda = app.add_option("--lambda", a.lambda, "R-D slope (dimensionless, see encoder.h)")
+  auto* lambda = app.add_option("--lambda", a.lambda,
+                                "rate-distortion trade-off instead of a target: larger keeps more detail, a bigger "
+                                "stream with less error (on a scan, 4x the value gives roughly twice the bytes and "
+                                "4 dB); typical 1e-4 to 1, default 1/64")
                      ->check(CLI::Range(1e-30, 1e30));
   auto* psnr = app.add_option("--psnr", a.psnr, "smallest stream whose PSNR meets this many dB")
                    ->check(CLI::Range(1.0, 300.0));
@@ -238,7 +279,9 @@ int RunEncode(int argc, char** argv) {
                  "--lambda picks its last bit plane) | uniform (baseline)")
       ->check(CLI::IsMember({"eq", "zerotree", "uniform"}));
   app.add_option("--tangential-factor", a.tangential_factor,
-                 "tangential components use lambda / F (default: 4 lifted, 2 unlifted, measured; the seed paper uses 100)")
+                 "how much cheaper than the normal part the two tangential parts of each wavelet "
+                 "coefficient are coded (they matter less to the surface: a larger F spends fewer bits "
+                 "on them; default 4 lifted, 2 unlifted)")
       ->check(CLI::Range(1e-6, 1e6));
   app.add_option("--levels", a.levels, "subdivision levels (-1: automatic)")->check(CLI::Range(-1, 10));
   app.add_option("--base-vertices", a.base_vertices, "base mesh size to aim for (-1: automatic)")
@@ -286,7 +329,7 @@ int RunEncode(int argc, char** argv) {
   }
   EncodeReport report;
   LevelCountReport search;
-  options.progress = TerminalProgress();
+  options.progress = TerminalProgress(a.json);
   const auto encode_start = std::chrono::steady_clock::now();
   auto bytes = EncodeChoosingLevels(source->remeshed, options, &report, &search);
   ClearTerminalProgress(options.progress);

@@ -13,6 +13,7 @@
 #include "mesh/diagnose.h"
 #include "mesh/mesh_io.h"
 #include "tools/command.h"
+#include "tools/gltf_info.h"
 #include "tools/stream_info.h"
 
 namespace eqmesh::cli {
@@ -21,6 +22,7 @@ namespace {
 struct InfoResult {
   std::string path;
   ReadReport read;
+  std::vector<GltfPrimitiveInfo> primitives;  // glTF with EXT_normal_mesh_compression
   MeshDiagnosis diagnosis;
   double read_seconds = 0.0;
   double diagnose_seconds = 0.0;
@@ -34,6 +36,22 @@ double SecondsSince(std::chrono::steady_clock::time_point start) {
 nlohmann::json GenusArray(const std::vector<int64_t>& genus) {
   nlohmann::json out = nlohmann::json::array();
   for (int64_t g : genus) out.push_back(g >= 0 ? nlohmann::json(g) : nlohmann::json(nullptr));
+  return out;
+}
+
+nlohmann::json PrimitivesJson(const std::vector<GltfPrimitiveInfo>& primitives) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const GltfPrimitiveInfo& p : primitives) {
+    nlohmann::json j = {{"mesh", p.mesh}, {"primitive", p.primitive}, {"compressed", p.compressed},
+                        {"vertices", p.vertices}, {"triangles", p.triangles}};
+    if (p.compressed) {
+      j["stream_bytes"] = p.stream_bytes;
+      j["levels"] = p.levels;
+      j["coder"] = p.coder;
+      j["prefix_bytes"] = p.prefix_bytes;
+    }
+    out.push_back(j);
+  }
   return out;
 }
 
@@ -62,10 +80,20 @@ nlohmann::json ToJson(const InfoResult& r) {
   j["manifold"] = d.IsManifold();
   j["polygons_triangulated"] = r.read.polygons_triangulated;
   j["notes"] = r.read.notes;
+  if (!r.primitives.empty()) j["primitives"] = PrimitivesJson(r.primitives);
   j["read_seconds"] = r.read_seconds;
   j["diagnose_seconds"] = r.diagnose_seconds;
   j["seconds"] = r.read_seconds + r.diagnose_seconds;
   return j;
+}
+
+// A glTF with EXT_normal_mesh_compression: its primitives, then the geometry
+// every level of every stream decodes to.
+StatusOr<Mesh> ReadDecodedGltf(const std::string& path, InfoResult* result) {
+  EQMESH_ASSIGN_OR_RETURN(CompressedGltf gltf, ReadCompressedGltf(path));
+  result->read.format = "gltf (EXT_normal_mesh_compression)";
+  result->primitives = std::move(gltf.primitives);
+  return std::move(gltf.decoded);
 }
 
 // "0 (x150), 1 (x1), undefined (x2)": readable even for hundreds of components.
@@ -109,6 +137,18 @@ void PrintTable(const InfoResult& r) {
   std::snprintf(diag, sizeof(diag), "%.6g", d.bbox_diagonal);
   row("bbox diagonal", diag);
   row("manifold", d.IsManifold() ? "yes" : "no");
+  for (const GltfPrimitiveInfo& p : r.primitives) {
+    const std::string name = "mesh " + num(static_cast<size_t>(p.mesh)) + " prim " + num(static_cast<size_t>(p.primitive));
+    std::string value = num(p.vertices) + " vertices, " + num(p.triangles) + " triangles";
+    if (p.compressed) {
+      value += " decoded from a " + num(p.stream_bytes) + "-byte " + p.coder + " stream of " +
+               num(static_cast<size_t>(p.levels)) + " levels; bytes to level 0.." + num(static_cast<size_t>(p.levels)) + ":";
+      for (uint64_t b : p.prefix_bytes) value += " " + num(b);
+    } else {
+      value += ", not compressed";
+    }
+    row(name.c_str(), value);
+  }
   for (const std::string& note : r.read.notes) row("note", note);
   char secs[64];
   std::snprintf(secs, sizeof(secs), "%.3f (read %.3f, diagnose %.3f)", r.read_seconds + r.diagnose_seconds,
@@ -117,12 +157,14 @@ void PrintTable(const InfoResult& r) {
 }
 
 int RunInfo(int argc, char** argv) {
-  CLI::App app{"Print the topology and geometry diagnosis of a mesh, or what an eqmesh stream holds."};
+  CLI::App app{"Print the topology and geometry diagnosis of a mesh, or what an eqmesh stream or compressed glTF holds."};
   std::string path;
   bool json = false;
   app.add_option("file", path,
-                 "mesh file: .obj .ply .off .gltf .glb, optionally gzip-compressed; or an eqmesh stream "
-                 "(.eqm: header, chunk sizes and the vertex count of every level, nothing decoded past the base)")
+                 "mesh file: .obj .ply .off .gltf .glb, optionally gzip-compressed; a glTF written by "
+                 "`eqmesh encode` (its primitives, each stream's levels and byte prefixes, and the decoded "
+                 "geometry); or an eqmesh stream (.eqm: header, chunk sizes and the vertex count of every "
+                 "level, nothing decoded past the base)")
       ->required();
   app.add_flag("--json", json, "print one JSON object instead of a table");
   try {
@@ -134,7 +176,7 @@ int RunInfo(int argc, char** argv) {
   InfoResult result;
   result.path = path;
   const auto start = std::chrono::steady_clock::now();
-  StatusOr<Mesh> mesh = ReadMesh(path, &result.read);
+  StatusOr<Mesh> mesh = IsCompressedGltf(path) ? ReadDecodedGltf(path, &result) : ReadMesh(path, &result.read);
   if (!mesh.ok()) {
     const std::string& message = mesh.status().message();
     return Fail("info", message.find(path) == std::string::npos ? path + ": " + message : message);

@@ -58,7 +58,7 @@ int RunRemesh(int argc, char** argv) {
   options.levels = levels;
   options.base_vertices = base_vertices;
   options.repair = repair;
-  options.progress = eqmesh::cli::TerminalProgress();
+  options.progress = eqmesh::cli::TerminalProgress(json);
   eqmesh::RemeshReport report;
   auto remeshed = eqmesh::Remesh(*mesh, options, &report);
   eqmesh::cli::ClearTerminalProgress(options.progress);

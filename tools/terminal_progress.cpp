@@ -6,8 +6,8 @@
 
 namespace eqmesh::cli {
 
-ProgressFn TerminalProgress() {
-  if (!isatty(fileno(stderr))) return nullptr;
+ProgressFn TerminalProgress(bool quiet) {
+  if (quiet || !isatty(fileno(stderr))) return nullptr;
   return [last = std::string(), last_pct = -1](const std::string& stage, double fraction) mutable {
     const int pct = static_cast<int>(fraction * 100.0);
     if (stage == last && pct == last_pct) return;

@@ -99,7 +99,13 @@ StatusOr<tinygltf::Model> ParseWithTinygltf(const std::vector<uint8_t>& bytes,
 StatusOr<tinygltf::Model> ReadGltfModelFromBytes(const std::vector<uint8_t>& bytes,
                                                  const std::string& name_for_errors,
                                                  const std::string& base_dir) {
+  if (bytes.empty()) return ParseError(name_for_errors + ": empty file");
   if (bytes.size() > 0x7FFFFFFFu) return ResourceLimit(name_for_errors + ": file larger than 2 GiB");
+  // The chunks are checked before the placeholder patch rewrites the JSON, so
+  // a byte offset in the message is one of the file (as ReadMesh reports it).
+  if (bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0) {
+    EQMESH_RETURN_IF_ERROR(io_internal::CheckGlbChunkLengths(bytes.data(), bytes.size(), name_for_errors));
+  }
   std::vector<DetachedIndices> detached;
   auto patched = DetachPlaceholderIndices(bytes, &detached);
   if (!patched.ok()) return patched.status().WithContext(name_for_errors);

@@ -5,13 +5,14 @@
 #include <limits>
 
 namespace eqmesh::io_internal {
-namespace {
 
 std::string FormatCoordinate(double v) {
   if (std::isnan(v)) return "nan";
   if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
   return std::to_string(v);
 }
+
+namespace {
 
 Status CheckFinite(const Mesh& mesh, const std::string& name) {
   for (size_t v = 0; v < mesh.positions.size(); ++v) {

@@ -67,6 +67,9 @@ inline const char* ParseInt64(const char* p, const char* end, int64_t* out) {
   return r.ec == std::errc() ? r.ptr : nullptr;
 }
 
+// A coordinate for error messages: "nan", "inf", "-inf" or its decimal value.
+std::string FormatCoordinate(double v);
+
 // The token starting at p, for error messages (at most 32 characters).
 std::string TokenForError(const char* p, const char* end);
 

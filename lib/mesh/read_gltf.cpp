@@ -3,6 +3,7 @@
 // transforms applied, flattened into one Mesh. tinygltf parses the JSON and buffers;
 // it does not check that accessors lie inside their buffers, so that is done here
 // before any byte is read. Images are never decoded.
+#include <algorithm>
 #include <tiny_gltf.h>
 
 #include <Eigen/Geometry>
@@ -270,12 +271,35 @@ Status LoadModel(const uint8_t* data, size_t size, bool binary, const std::strin
   return Status::Ok();
 }
 
+// Whether the glTF JSON (a .gltf, or a GLB's first chunk) lists
+// EXT_normal_mesh_compression among the extensions it uses: such a file's
+// placeholder accessors hold no data, so this reader (which decodes nothing)
+// must not take it for a broken file.
+bool NamesCompressionExtension(const uint8_t* data, size_t size, bool binary) {
+  size_t begin = 0, end = size;
+  if (binary) {
+    if (size < 20) return false;
+    uint32_t length = 0;
+    for (int i = 0; i < 4; ++i) length |= static_cast<uint32_t>(data[12 + i]) << (8 * i);
+    begin = 20;
+    end = std::min<size_t>(size, 20 + static_cast<size_t>(length));
+  }
+  static const std::string kName = "\"EXT_normal_mesh_compression\"";
+  const char* text = reinterpret_cast<const char*>(data);
+  return std::search(text + begin, text + end, kName.begin(), kName.end()) != text + end;
+}
+
 }  // namespace
 
 StatusOr<Mesh> ReadGltf(const uint8_t* data, size_t size, bool binary, const std::string& name,
                         const std::string& base_dir, ReadReport* report) {
   report->format = binary ? "glb" : "gltf";
   if (size == 0) return ParseError(name + ": empty file");
+  if (binary) EQMESH_RETURN_IF_ERROR(CheckGlbChunkLengths(data, size, name));
+  if (NamesCompressionExtension(data, size, binary)) {
+    return UnsupportedFeature(name + ": geometry compressed with EXT_normal_mesh_compression; decode it first "
+                                     "(eqmesh decode " + name + " OUT)");
+  }
   tinygltf::Model model;
   EQMESH_RETURN_IF_ERROR(LoadModel(data, size, binary, name, base_dir, &model, report));
   uint64_t input_bytes = size;

@@ -1,6 +1,7 @@
 // Wavefront OBJ: only `v` and `f` matter to a geometry codec. Texture/normal
 // references in face corners ("1/2/3", "1//3") are read past, relative (negative)
 // indices resolve against the vertices seen so far, as the format defines.
+#include <cmath>
 #include <cstring>
 #include <limits>
 
@@ -26,6 +27,12 @@ Status ParseVertex(const char* p, const char* end, size_t line, ObjState* s) {
       return ParseErrorAt(s->name, line, "bad vertex coordinate " + TokenForError(p, end));
     }
     p = next;
+  }
+  if (!std::isfinite(xyz[0]) || !std::isfinite(xyz[1]) || !std::isfinite(xyz[2])) {
+    return Status(StatusCode::kInvalidMesh,
+                  s->name + ": line " + std::to_string(line) + ": vertex " + std::to_string(s->builder.num_positions()) +
+                      " (0-based) has a non-finite coordinate (" + FormatCoordinate(xyz[0]) + ", " +
+                      FormatCoordinate(xyz[1]) + ", " + FormatCoordinate(xyz[2]) + ")");
   }
   s->builder.AddPosition(xyz[0], xyz[1], xyz[2]);  // a 4th (w) or colour values are ignored
   return Status::Ok();

@@ -92,12 +92,13 @@ std::vector<Refusal> RefusedCorpus() {
   {
     ObjText t = Sphere();
     t.vertices[3] = "nan 0 0";
-    cases.push_back({"nan_coordinate", t.Str(), "non-finite", false});
+    // The file line, and the vertex index as stored (0-based).
+    cases.push_back({"nan_coordinate", t.Str(), "line 4: vertex 3 (0-based) has a non-finite", false});
   }
   {
     ObjText t = Sphere();
     t.vertices[3] = "0 -inf 0";
-    cases.push_back({"inf_coordinate", t.Str(), "non-finite", false});
+    cases.push_back({"inf_coordinate", t.Str(), "line 4: vertex 3 (0-based) has a non-finite", false});
   }
   {
     ObjText t = Sphere();

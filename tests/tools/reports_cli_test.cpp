@@ -1,0 +1,128 @@
+// What the `eqmesh` commands tell a user about what they wrote: `info` on a
+// compressed GLB, the per-primitive rate and PSNR of a .glb encode (the same
+// stream a .eqm encode writes), quality targets that cannot be met (a clear
+// error, no file), and one message per broken GLB whichever command reads it.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "mesh/mesh_io.h"
+#include "test_support.h"
+#include "tools/tool_runner.h"
+
+namespace eqmesh::testing {
+namespace {
+
+// A bumpy 2562-vertex sphere: smooth enough to remesh at 70+ dB, detailed
+// enough that a rate target chooses among several levels. The tests remesh it
+// with 3 levels: the automatic count would refine to ~300k vertices.
+std::string WriteBumpySphere(const ScratchDir& dir) {
+  Mesh m = MakeIcosphere(4);
+  for (Vec3& p : m.positions) p *= 1.0 + 0.05 * std::sin(5.0 * p.x()) * std::cos(4.0 * p.y());
+  const std::string path = dir.Path("sphere.obj");
+  EXPECT_TRUE(WriteMesh(m, path).ok());
+  return path;
+}
+
+nlohmann::json Json(const ToolRun& r) {
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  return nlohmann::json::parse(r.output, nullptr, false);
+}
+
+TEST(ReportsCli, InfoDescribesACompressedGlb) {
+  const ScratchDir dir("reports_info");
+  const std::string glb = dir.Path("sphere.glb");
+  const nlohmann::json encoded = Json(RunTool("encode " + WriteBumpySphere(dir) + " " + glb + " --levels 3 --bpv 4 --json"));
+  ASSERT_FALSE(encoded.is_discarded());
+  const nlohmann::json info = Json(RunTool("info " + glb + " --json"));
+  ASSERT_FALSE(info.is_discarded());
+  ASSERT_EQ(info["primitives"].size(), 1u);
+  const nlohmann::json& p = info["primitives"][0];
+  EXPECT_TRUE(p["compressed"].get<bool>());
+  EXPECT_EQ(p["levels"], encoded["primitives"][0]["levels"]);
+  EXPECT_EQ(p["stream_bytes"], encoded["primitives"][0]["stream_bytes"]);
+  const std::vector<uint64_t> prefixes = p["prefix_bytes"].get<std::vector<uint64_t>>();
+  ASSERT_EQ(prefixes.size(), p["levels"].get<size_t>() + 1);
+  for (size_t k = 1; k < prefixes.size(); ++k) EXPECT_LT(prefixes[k - 1], prefixes[k]);
+  EXPECT_EQ(prefixes.back(), p["stream_bytes"].get<uint64_t>());
+  // The decoded geometry is what `decode` writes.
+  EXPECT_EQ(p["vertices"], encoded["primitives"][0]["output_vertices"]);
+  EXPECT_EQ(info["referenced_vertices"], p["vertices"]);
+  EXPECT_TRUE(info["manifold"].get<bool>());
+  const ToolRun table = RunTool("info " + glb);
+  EXPECT_EQ(table.exit_code, 0) << table.output;
+  EXPECT_NE(table.output.find("EXT_normal_mesh_compression"), std::string::npos) << table.output;
+  EXPECT_NE(table.output.find("bytes to level 0.."), std::string::npos) << table.output;
+}
+
+TEST(ReportsCli, GlbEncodeReportsEachPrimitivesRateAndWritesTheEqmStream) {
+  const ScratchDir dir("reports_glb");
+  const std::string in = WriteBumpySphere(dir);
+  const ToolRun glb = RunTool("encode " + in + " " + dir.Path("sphere.glb") + " --levels 3 --bpv 3");
+  ASSERT_EQ(glb.exit_code, 0) << glb.output;
+  EXPECT_NE(glb.output.find("in streams"), std::string::npos) << glb.output;
+  EXPECT_NE(glb.output.find("bits per input vertex"), std::string::npos) << glb.output;
+  EXPECT_NE(glb.output.find("PSNR"), std::string::npos) << glb.output;
+  // One rate target, one stream: the GLB carries what `encode IN x.eqm` writes.
+  const nlohmann::json g = Json(RunTool("encode " + in + " " + dir.Path("sphere.glb") + " --levels 3 --bpv 3 --json"));
+  const nlohmann::json e = Json(RunTool("encode " + in + " " + dir.Path("sphere.eqm") + " --levels 3 --bpv 3 --json"));
+  ASSERT_FALSE(g.is_discarded());
+  ASSERT_FALSE(e.is_discarded());
+  EXPECT_EQ(g["primitives"][0]["stream_bytes"], e["bytes"]);
+  EXPECT_EQ(g["primitives"][0]["levels"], e["levels"]);
+}
+
+TEST(ReportsCli, UnreachablePsnrTargetFailsNamingTheBestAndWritesNothing) {
+  const ScratchDir dir("reports_psnr");
+  const std::string in = WriteBumpySphere(dir);
+  const std::string out = dir.Path("sphere.eqm");
+  const ToolRun r = RunTool("encode " + in + " " + out + " --levels 3 --psnr 150");
+  EXPECT_NE(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("PSNR target 150.00 dB is out of reach"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(" measures "), std::string::npos) << r.output;
+  EXPECT_FALSE(FileExists(out));
+  // A floor no primitive of the GLB meets leaves it unchanged; with nothing
+  // compressed the run fails and writes nothing.
+  const std::string glb = dir.Path("sphere.glb");
+  const ToolRun g = RunTool("encode " + in + " " + glb + " --levels 3 --bpv 2 --min-psnr 200");
+  EXPECT_NE(g.exit_code, 0) << g.output;
+  EXPECT_NE(g.output.find("below the 200.00 dB floor"), std::string::npos) << g.output;
+  EXPECT_FALSE(FileExists(glb));
+}
+
+TEST(ReportsCli, BrokenGlbGetsOneMessageFromEveryCommand) {
+  const ScratchDir dir("reports_broken");
+  const std::string empty = dir.Path("empty.glb");
+  WriteText(empty, "");
+  for (const std::string& command : {"info " + empty, "decode " + empty + " " + dir.Path("x.ply"),
+                                     "encode " + empty + " " + dir.Path("x.glb"), "compare " + empty + " " + empty}) {
+    const ToolRun r = RunTool(command);
+    EXPECT_NE(r.exit_code, 0) << command;
+    EXPECT_NE(r.output.find("empty.glb: empty file"), std::string::npos) << command << ": " << r.output;
+  }
+  // A GLB cut short: the same chunk offset whichever reader meets it first.
+  const std::string glb = dir.Path("sphere.glb");
+  ASSERT_EQ(RunTool("encode " + WriteBumpySphere(dir) + " " + glb + " --levels 3 --bpv 3").exit_code, 0);
+  const std::vector<uint8_t> bytes = ReadFileOrEmpty(glb);
+  ASSERT_GT(bytes.size(), 1200u);
+  const std::string cut = dir.Path("cut.glb");
+  WriteText(cut, std::string(bytes.begin(), bytes.begin() + 1200));
+  std::string first;
+  for (const std::string& command : {"info " + cut, "decode " + cut + " " + dir.Path("y.ply"),
+                                     "encode " + cut + " " + dir.Path("y.glb"), "compare " + cut + " " + cut}) {
+    const ToolRun r = RunTool(command);
+    EXPECT_NE(r.exit_code, 0) << command;
+    const size_t at = r.output.find("GLB chunk at byte ");
+    ASSERT_NE(at, std::string::npos) << command << ": " << r.output;
+    const std::string message = r.output.substr(at, r.output.find('\n', at) - at);
+    if (first.empty()) first = message;
+    EXPECT_EQ(message, first) << command;
+  }
+}
+
+}  // namespace
+}  // namespace eqmesh::testing
