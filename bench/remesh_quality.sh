@@ -9,7 +9,7 @@
 # slivers: finest faces of quality 4*sqrt(3)*area / sum(edge^2) below 0.1 (not a bar).
 # Quality bars (bench/README_remesh.md): no flipped/degenerate faces, closed input
 # -> closed output of the same genus, normal_fraction >= 0.90, psnr_db >= 84,
-# base <= 0.3 % of input vertices, <= 30 s per million input triangles.
+# <= 30 s per million input triangles.
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 eqmesh="${1:-$here/../build/tools/eqmesh}"
