@@ -202,13 +202,11 @@ void Simplifier::InitErrorBounds(const MeshTopology& topology, double max_error_
   max_error2_.assign(pos_.size(), std::numeric_limits<double>::infinity());
   if (!(max_error_share > 0.0)) return;
   const std::vector<uint32_t>& face_component = topology.FaceComponents();
-  std::vector<BoundingBox> boxes(topology.num_components());
-  std::vector<uint8_t> seen(topology.num_components(), 0);
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<BoundingBox> boxes(topology.num_components(), {Vec3::Constant(inf), Vec3::Constant(-inf)});
   for (size_t f = 0; f < faces_.size(); ++f) {
     BoundingBox& box = boxes[face_component[f]];
     for (uint32_t c : faces_[f]) {
-      if (!seen[face_component[f]]) box = {pos_[c], pos_[c]};
-      seen[face_component[f]] = 1;
       box.min = box.min.cwiseMin(pos_[c]);
       box.max = box.max.cwiseMax(pos_[c]);
     }

@@ -3,10 +3,10 @@
 #include "remesh/remesh.h"
 
 #include <algorithm>
-#include <string>
 #include <chrono>
-#include <limits>
 #include <cmath>
+#include <limits>
+#include <string>
 
 #include "mesh/mesh_topology.h"
 #include "mesh/repair.h"
@@ -233,7 +233,6 @@ struct Refinement {
   std::vector<VertexKind> kinds;
   int levels = 0;
   std::vector<double> estimated_psnr_db_per_level;
-  double measured_psnr_db = 0.0;  // of the last level measured before refining on (0: none)
   std::vector<uint32_t> finest_folded_faces;
   std::vector<StencilTable> stencils;  // of each refinement, for the untangling
 };
@@ -287,7 +286,6 @@ StatusOr<Refinement> RefineAllLevels(const RefineContext& c) {
     if (decision == LevelDecision::kStop) break;
     if (decision == LevelDecision::kMeasureFirst) {
       const double psnr = MeasureLevelPsnr(c.surface_mesh, r.positions, r.hierarchy.Faces(r.levels));
-      r.measured_psnr_db = psnr;
       if (psnr >= kAutoTargetPsnrDb || psnr - previous_psnr < kAutoMinGainDb) break;
       previous_psnr = psnr;
     }
