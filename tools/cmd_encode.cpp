@@ -222,6 +222,7 @@ StatusOr<Source> RemeshInput(const EncodeArgs& a) {
   options.levels = a.levels;
   options.base_vertices = a.base_vertices;
   options.repair = a.repair;
+  if (a.psnr > 0) options.min_psnr = a.psnr + kRemeshMarginDb;
   options.progress = TerminalProgress(a.json);
   const auto start = std::chrono::steady_clock::now();
   auto remeshed = Remesh(mesh, options, &src.remesh);

@@ -27,6 +27,7 @@ int RunRemesh(int argc, char** argv) {
   CLI::App app{"Remesh a manifold triangle mesh into a semi-regular normal mesh", argv[0]};
   std::string in_path, out_path;
   int levels = -1, base_vertices = -1;
+  double min_psnr = 0.0;
   bool repair = false, json = false;
   int threads = 0;
   app.add_option("IN", in_path, "input mesh (.obj .ply .off .gltf .glb, optionally .gz)")->required();
@@ -34,10 +35,18 @@ int RunRemesh(int argc, char** argv) {
                  "output: finest level as a mesh (.obj .ply .off .glb), or the whole hierarchy as a "
                  "lossless .srm file that `eqmesh encode` reads without remeshing again")
       ->required();
-  app.add_option("--levels", levels, "subdivision levels (-1: automatic, by measured error)")
+  app.add_option("--levels", levels,
+                 "subdivision levels (-1: automatic: 8x the input's density, then more while the remesh "
+                 "measures below 86 dB)")
       ->check(CLI::Range(-1, 10));
-  app.add_option("--base-vertices", base_vertices, "base mesh size to aim for (-1: 0.3% of the input)")
+  app.add_option("--base-vertices", base_vertices,
+                 "base mesh size to simplify to (-1: automatic, sized by the shape: every input vertex "
+                 "within 2 % of its part's diagonal of the base)")
       ->check(CLI::Range(-1, 1 << 30));
+  app.add_option("--min-psnr", min_psnr,
+                 "with the automatic base: when the remesh measures below this many dB against the input, "
+                 "redo it with a base twice as fine (at most twice; 0: no floor)")
+      ->check(CLI::Range(0.0, 300.0));
   app.add_flag("--repair", repair, "repair non-manifold / misoriented input instead of refusing it");
   app.add_flag("--json", json, "print one JSON object with the remesh report");
   app.add_option("--threads", threads, "worker threads, 0 = all cores (the output does not depend on it)")
@@ -58,6 +67,7 @@ int RunRemesh(int argc, char** argv) {
   options.levels = levels;
   options.base_vertices = base_vertices;
   options.repair = repair;
+  options.min_psnr = min_psnr;
   options.progress = eqmesh::cli::TerminalProgress(json);
   eqmesh::RemeshReport report;
   auto remeshed = eqmesh::Remesh(*mesh, options, &report);
@@ -90,6 +100,7 @@ int RunRemesh(int argc, char** argv) {
   j["components_kept_exactly"] = report.components_kept_exactly;
   j["kept_exactly_vertices"] = report.kept_exactly_vertices;
   j["boundary_loops"] = report.boundary_loops;
+  j["base_error_share"] = report.base_error_share;
   j["seconds"] = report.seconds;
   j["stage_seconds"] = {{"prepare", report.stage_seconds.prepare},
                         {"base_domain", report.stage_seconds.base_domain},

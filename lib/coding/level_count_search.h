@@ -46,6 +46,10 @@ struct LevelCountReport {
 // `mesh` truncated to its first `levels` levels (positions, kinds, hierarchy).
 StatusOr<SemiRegularMesh> TruncateLevels(const SemiRegularMesh& mesh, int levels);
 
+// A PSNR target asks the remesher for a remesh this much better
+// (RemeshOptions::min_psnr): coding adds error to the remesh's own.
+inline constexpr double kRemeshMarginDb = 1.0;
+
 // PSNR of the whole remesh, uncoded, against `original` (at the ranking sample
 // count): no stream of it can measure higher.
 StatusOr<double> RemeshCeilingPsnr(const SemiRegularMesh& mesh, const Mesh& original);

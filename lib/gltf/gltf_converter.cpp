@@ -31,7 +31,11 @@ bool IsGltfFile(const std::string& path) {
 
 StatusOr<CompressedGeometry> CompressWithEqmesh(const ConvertOptions& options, const Mesh& mesh) {
   RemeshReport remesh_report;
-  EQMESH_ASSIGN_OR_RETURN(const SemiRegularMesh remeshed, Remesh(mesh, options.remesh, &remesh_report));
+  RemeshOptions remesh = options.remesh;
+  // The floor the stream must meet, as a floor for the remesh (plus coding's margin).
+  const double floor = std::max(options.min_psnr, options.codec.target_psnr);
+  if (floor > 0) remesh.min_psnr = std::max(remesh.min_psnr, floor + kRemeshMarginDb);
+  EQMESH_ASSIGN_OR_RETURN(const SemiRegularMesh remeshed, Remesh(mesh, remesh, &remesh_report));
   EncodeOptions codec = options.codec;
   codec.input_vertices = CountReferencedVertices(mesh);
   codec.original = &mesh;

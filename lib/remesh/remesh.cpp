@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 
@@ -59,6 +60,8 @@ constexpr double kBaseErrorShare = 0.02;
 // (bench/README_remesh.md).
 constexpr double kMinBaseFraction = 0.003;
 constexpr size_t kMinBasePerComponent = 8;
+// RemeshOptions::min_psnr: how many times the base bound is halved to meet it.
+constexpr int kFloorRetries = 2;
 
 struct Prepared {
   Mesh surface;                  // components to remesh, compacted
@@ -156,7 +159,7 @@ StatusOr<Prepared> Prepare(const Mesh& input, const RemeshOptions& options, Reme
   return out;
 }
 
-BaseDomainOptions BaseOptions(const Prepared& p, const RemeshOptions& options) {
+BaseDomainOptions BaseOptions(const Prepared& p, const RemeshOptions& options, double error_share) {
   BaseDomainOptions base;
   base.progress = options.progress;
   if (options.base_vertices > 0) {
@@ -165,7 +168,7 @@ BaseDomainOptions BaseOptions(const Prepared& p, const RemeshOptions& options) {
   }
   const size_t by_fraction = static_cast<size_t>(kMinBaseFraction * static_cast<double>(p.input_vertices));
   base.target_vertices = std::max(by_fraction, kMinBasePerComponent * p.components_remeshed);
-  base.max_error_share = kBaseErrorShare;
+  base.max_error_share = error_share;
   return base;
 }
 
@@ -302,6 +305,70 @@ StatusOr<Refinement> RefineAllLevels(const RefineContext& c) {
   return r;
 }
 
+struct SurfaceContext {
+  const Prepared& prep;
+  const TriangleBvh& bvh;
+  const InputSurface& surface;
+  const RemeshOptions& options;
+  DensityTarget density;
+};
+
+// Base domain, every level and the untangling, at one base error bound; adds
+// each stage's seconds to the report.
+StatusOr<Refinement> RemeshSurface(const SurfaceContext& c, double error_share, RemeshReport* report) {
+  auto lap = std::chrono::steady_clock::now();
+  const auto seconds_since_lap = [&lap] {
+    const auto now = std::chrono::steady_clock::now();
+    const double s = std::chrono::duration<double>(now - lap).count();
+    lap = now;
+    return s;
+  };
+  const BaseDomainOptions base_options = BaseOptions(c.prep, c.options, error_share);
+  EQMESH_ASSIGN_OR_RETURN(BaseDomain base, BuildBaseDomain(c.prep.surface, c.bvh, c.prep.boundary, base_options));
+  report->stage_seconds.base_domain += seconds_since_lap();
+  if (c.options.base_vertices > 0 && base.base_to_input.size() > base_options.target_vertices) {
+    report->notes.push_back("simplification stalled at " + std::to_string(base.base_to_input.size()) +
+                            " base vertices (asked for " + std::to_string(base_options.target_vertices) + ")");
+  }
+  const RefineContext refine{base, c.prep.surface, c.surface, c.options, BoundingBoxDiagonal(c.prep.surface),
+                             c.density};
+  EQMESH_ASSIGN_OR_RETURN(Refinement r, RefineAllLevels(refine));
+  report->stage_seconds.refine += seconds_since_lap();
+  UntangleFinestLevel(r.hierarchy, c.surface, r.finest_folded_faces, std::move(r.stencils), &r.positions, &r.kinds);
+  report->stage_seconds.untangle += seconds_since_lap();
+  return r;
+}
+
+// RemeshSurface at the automatic base bound; when the options ask for a PSNR
+// floor and the remesh measures below it, again with the bound halved (up to
+// kFloorRetries times), keeping the best. Where the shape has detail below the
+// 2 % bound (fingers, toes, claws) the remesh loses it at every level; a floor
+// that asks for that detail pays for a finer base only there.
+StatusOr<Refinement> RemeshMeetingFloor(const SurfaceContext& c, RemeshReport* report) {
+  const bool floor = c.options.min_psnr > 0 && c.options.base_vertices <= 0;
+  double share = kBaseErrorShare;
+  Refinement best;
+  for (int attempt = 0;; ++attempt) {
+    EQMESH_ASSIGN_OR_RETURN(Refinement r, RemeshSurface(c, share, report));
+    if (!floor) {
+      report->base_error_share = c.options.base_vertices > 0 ? 0.0 : share;
+      return r;
+    }
+    const double psnr = MeasureLevelPsnr(c.prep.surface, r.positions, r.hierarchy.Faces(r.levels));
+    if (attempt == 0 || psnr > report->psnr_db) {
+      best = std::move(r);
+      report->psnr_db = psnr;
+      report->base_error_share = share;
+    }
+    if (report->psnr_db >= c.options.min_psnr || attempt == kFloorRetries) return best;
+    char note[160];
+    std::snprintf(note, sizeof(note), "remesh at a %.2g %% base bound measured %.2f dB, below the %.2f dB floor: "
+                  "base bound halved", 100.0 * share, psnr, c.options.min_psnr);
+    report->notes.push_back(note);
+    share /= 2.0;
+  }
+}
+
 }  // namespace
 
 StatusOr<SemiRegularMesh> Remesh(const Mesh& input, const RemeshOptions& options, RemeshReport* report_out) {
@@ -347,24 +414,10 @@ StatusOr<SemiRegularMesh> Remesh(const Mesh& input, const RemeshOptions& options
   for (Vec3& p : prep.surface.positions) p *= scale;
   EQMESH_ASSIGN_OR_RETURN(TriangleBvh bvh, TriangleBvh::Build(prep.surface));
   report.stage_seconds.prepare = seconds_since_lap();
-  const BaseDomainOptions base_options = BaseOptions(prep, options);
-  EQMESH_ASSIGN_OR_RETURN(BaseDomain base, BuildBaseDomain(prep.surface, bvh, prep.boundary, base_options));
-  report.base_vertices = base.base_to_input.size();
-  report.stage_seconds.base_domain = seconds_since_lap();
-  if (options.base_vertices > 0 && report.base_vertices > base_options.target_vertices) {
-    report.notes.push_back("simplification stalled at " + std::to_string(report.base_vertices) +
-                           " base vertices (asked for " + std::to_string(base_options.target_vertices) + ")");
-  }
-
   const InputSurface surface(prep.surface, bvh, prep.boundary);
-  const double diagonal = BoundingBoxDiagonal(prep.surface);
-  const RefineContext context{base, prep.surface, surface, options, diagonal,
-                              AutoDensityTarget(prep.surface, prep.input_vertices)};
-  EQMESH_ASSIGN_OR_RETURN(Refinement best, RefineAllLevels(context));
-  report.stage_seconds.refine = seconds_since_lap();
-  UntangleFinestLevel(best.hierarchy, surface, best.finest_folded_faces, std::move(best.stencils), &best.positions,
-                      &best.kinds);
-  report.stage_seconds.untangle = seconds_since_lap();
+  const SurfaceContext context{prep, bvh, surface, options, AutoDensityTarget(prep.surface, prep.input_vertices)};
+  EQMESH_ASSIGN_OR_RETURN(Refinement best, RemeshMeetingFloor(context, &report));
+  report.base_vertices = best.hierarchy.NumVertices(0);
   CountNormalVertices(best.hierarchy, best.kinds, &report);
   out.hierarchy = std::move(best.hierarchy);
   out.positions = std::move(best.positions);

@@ -30,6 +30,11 @@ struct RemeshOptions {
   int base_vertices = -1;
   // Run RepairForRemeshing first instead of refusing non-manifold input.
   bool repair = false;
+  // PSNR floor (dB, the `eqmesh compare` meter) for the automatic base: a remesh
+  // measuring below it is redone with the base's error bound halved, up to
+  // twice, and the best is kept (it may still be below). 0: no floor, nothing
+  // measured. Encoders pass their PSNR target plus a margin for coding.
+  double min_psnr = 0.0;
   ProgressFn progress;
 };
 
@@ -46,6 +51,11 @@ struct RemeshReport {
   size_t components_remeshed = 0;
   size_t components_kept_exactly = 0;
   size_t kept_exactly_vertices = 0;
+  // The automatic base's error bound (share of each part's diagonal; 0 with
+  // base_vertices), and with RemeshOptions::min_psnr the remesh's PSNR against
+  // the input (100k samples each way; 0 when not measured).
+  double base_error_share = 0.0;
+  double psnr_db = 0.0;
   size_t boundary_loops = 0;
   double seconds = 0.0;
   // Wall seconds of each stage, so speed work knows where the time goes.

@@ -257,5 +257,25 @@ TEST(Remesh, HardShapesRemeshWithoutFolds) {
   }
 }
 
+// A PSNR floor the automatic base misses redoes the remesh with the base's
+// error bound halved: more base vertices, and the best remesh kept.
+TEST(Remesh, AFloorAboveTheRemeshHalvesTheBaseBound) {
+  const Mesh star = testing::MakeSpikyStar();
+  RemeshOptions options;
+  options.levels = 2;
+  options.min_psnr = 1.0;  // met at once: measures the default remesh
+  RemeshReport first;
+  ASSERT_TRUE(Remesh(star, options, &first).ok());
+  EXPECT_EQ(first.base_error_share, kErrorShare);
+  ASSERT_GT(first.psnr_db, 1.0);
+  options.min_psnr = first.psnr_db + 3.0;
+  RemeshReport floored;
+  ASSERT_TRUE(Remesh(star, options, &floored).ok());
+  EXPECT_LE(floored.base_error_share, kErrorShare / 2.0);
+  EXPECT_GT(floored.base_vertices, first.base_vertices);
+  EXPECT_GT(floored.psnr_db, first.psnr_db);
+  EXPECT_FALSE(floored.notes.empty());
+}
+
 }  // namespace
 }  // namespace eqmesh
