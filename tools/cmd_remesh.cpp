@@ -44,8 +44,8 @@ int RunRemesh(int argc, char** argv) {
                  "within 2 % of its part's diagonal of the base)")
       ->check(CLI::Range(-1, 1 << 30));
   app.add_option("--min-psnr", min_psnr,
-                 "with the automatic base: when the remesh measures below this many dB against the input, "
-                 "redo it with a base twice as fine (at most twice; 0: no floor)")
+                 "with the automatic base: when the remesh measures below this many dB against the input "
+                 "(by at most 10 dB), redo it with a base twice as fine (at most twice; 0: no floor)")
       ->check(CLI::Range(0.0, 300.0));
   app.add_flag("--repair", repair, "repair non-manifold / misoriented input instead of refusing it");
   app.add_flag("--json", json, "print one JSON object with the remesh report");

@@ -60,8 +60,10 @@ constexpr double kBaseErrorShare = 0.02;
 // (bench/README_remesh.md).
 constexpr double kMinBaseFraction = 0.003;
 constexpr size_t kMinBasePerComponent = 8;
-// RemeshOptions::min_psnr: how many times the base bound is halved to meet it.
+// RemeshOptions::min_psnr: how many times the base bound is halved to meet it,
+// and how far below it a remesh may measure for that to be tried.
 constexpr int kFloorRetries = 2;
+constexpr double kFloorReachDb = 10.0;
 
 struct Prepared {
   Mesh surface;                  // components to remesh, compacted
@@ -360,7 +362,12 @@ StatusOr<Refinement> RemeshMeetingFloor(const SurfaceContext& c, RemeshReport* r
       report->psnr_db = psnr;
       report->base_error_share = share;
     }
-    if (report->psnr_db >= c.options.min_psnr || attempt == kFloorRetries) return best;
+    // A finer base recovers detail lost at tips, a few dB; a floor farther off
+    // is out of any base's reach, and the caller says so.
+    if (report->psnr_db >= c.options.min_psnr || report->psnr_db + kFloorReachDb < c.options.min_psnr ||
+        attempt == kFloorRetries) {
+      return best;
+    }
     char note[160];
     std::snprintf(note, sizeof(note), "remesh at a %.2g %% base bound measured %.2f dB, below the %.2f dB floor: "
                   "base bound halved", 100.0 * share, psnr, c.options.min_psnr);

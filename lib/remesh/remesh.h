@@ -31,9 +31,9 @@ struct RemeshOptions {
   // Run RepairForRemeshing first instead of refusing non-manifold input.
   bool repair = false;
   // PSNR floor (dB, the `eqmesh compare` meter) for the automatic base: a remesh
-  // measuring below it is redone with the base's error bound halved, up to
-  // twice, and the best is kept (it may still be below). 0: no floor, nothing
-  // measured. Encoders pass their PSNR target plus a margin for coding.
+  // measuring below it (by at most 10 dB) is redone with the base's error bound
+  // halved, up to twice, and the best is kept (it may still be below). 0: no
+  // floor, nothing measured. Encoders pass their PSNR target plus a margin.
   double min_psnr = 0.0;
   ProgressFn progress;
 };
