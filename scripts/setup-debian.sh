@@ -6,7 +6,7 @@ set -euo pipefail
 
 PACKAGES=(
   build-essential cmake ninja-build pkg-config git
-  libtinygltf-dev libdraco-dev draco libeigen3-dev
+  libtinygltf-dev libdraco-dev draco libeigen3-dev libjpeg-dev libpng-dev
   libgtest-dev googletest libcli11-dev nlohmann-json3-dev zlib1g-dev libstb-dev
   gltfpack gzip python3 time
   clang libclang-rt-14-dev

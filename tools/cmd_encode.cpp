@@ -40,6 +40,7 @@ struct EncodeArgs {
   int levels = -1, base_vertices = -1;
   int threads = 0;
   double min_psnr = 60.0;
+  int texture_size = 0;
   bool strict = false;
   bool repair = false, measure = false, json = false, fallback = false;
   bool draco_base = false;
@@ -167,6 +168,7 @@ int EncodeToGlb(const EncodeArgs& a) {
   options.fallback = a.fallback;
   options.strict = a.strict;
   options.min_psnr = a.min_psnr;
+  options.texture_size = static_cast<uint32_t>(a.texture_size);
   options.remesh.progress = TerminalProgress(a.json);
   options.codec.progress = options.remesh.progress;
   const auto start = std::chrono::steady_clock::now();
@@ -304,6 +306,10 @@ int RunEncode(int argc, char** argv) {
                  ".glb output: leave a primitive unchanged (with a warning) when its decoded stream measures "
                  "below this many dB against it (default 60; 0: no floor)")
       ->check(CLI::Range(0.0, 300.0));
+  app.add_option("--texture-size", a.texture_size,
+                 ".glb output: side in texels of the atlas textures a textured primitive gets (default 0: "
+                 "each input texture's own size)")
+      ->check(CLI::Range(0, 16384));
   app.add_option("--threads", a.threads, "worker threads, 0 = all cores (the output does not depend on it)")
       ->check(CLI::Range(0, 256));
   try {

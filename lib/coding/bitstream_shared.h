@@ -2,7 +2,7 @@
 // pattern). The values are part of the format: NEVER renumber or reuse one; add new
 // values at the end and bump kVersionMinor (compatible addition) or kVersionMajor.
 //
-// Stream layout, version 1.3 (all multi-byte integers little endian; "varint" is
+// Stream layout, version 1.4 (all multi-byte integers little endian; "varint" is
 // unsigned LEB128, "svarint" zig-zag LEB128; ext_spec/ restates this normatively):
 //
 //   magic            4 bytes  "EQMS"
@@ -18,6 +18,7 @@
 //   quantum          f32      q0 > 0, world units: coefficient unit of the level coder
 //   base_size        varint   bytes of the base-mesh chunk (> 0)
 //   kept_size        varint   only with kHasKeptExactly: bytes of the kept chunk (> 0)
+//   atlas_size       varint   only with kHasAtlas: bytes of the atlas chunk (> 0)
 //   level_size[J]    varint   bytes of level chunk j = 0..J-1 (refinement j -> j+1)
 //   -- end of header; chunks follow back to back, no padding, nothing after --
 //   base chunk       the base connectivity and the level-0 scaling values
@@ -26,6 +27,9 @@
 //                    (since 1.2) a compact chunk (coding/compact_base/), else a
 //                    Draco mesh buffer. Its vertex order defines base vertex numbering.
 //   kept chunk       Draco mesh buffer of SemiRegularMesh::kept_exactly.
+//   atlas chunk      (since 1.4) the texture atlas: a square cell per base face, or
+//                    per pair of base faces across an edge, from which every level's
+//                    TEXCOORD_0 follows (coding/atlas/atlas_layout.h).
 //   level chunks     opaque to the container; for kCoderEq one EqLevel chunk each
 //                    (lib/coding/eq), decoded against the hierarchy level layout,
 //                    with context-modelled tangential parts when kTangentialContext;
@@ -43,8 +47,12 @@ namespace eqmesh::bitstream {
 
 constexpr uint8_t kMagic[4] = {'E', 'Q', 'M', 'S'};
 constexpr uint8_t kVersionMajor = 1;
-constexpr uint8_t kVersionMinor = 3;  // 1.1: coder 1 (zerotree); 1.2: kCompactBase;
-                                      // 1.3: kTangentialContext
+constexpr uint8_t kVersionMinor = 4;  // 1.1: coder 1 (zerotree); 1.2: kCompactBase;
+                                      // 1.3: kTangentialContext; 1.4: kHasAtlas
+// A stream carries the lowest minor version that has every feature it uses, so an
+// optional feature leaves the streams without it byte-identical: 1.3 without an
+// atlas, 1.4 with one.
+constexpr uint8_t kVersionMinorWithoutAtlas = 3;
 
 // Wavelet transform the level chunks are expressed in. Pinned values.
 enum class TransformId : uint8_t {
@@ -65,8 +73,9 @@ enum HeaderFlag : uint8_t {
   kHasKeptExactly = 1u << 0,  // a kept-exactly chunk follows the base chunk
   kCompactBase = 1u << 1,     // the base chunk is a compact chunk, not Draco (1.2)
   kTangentialContext = 1u << 2,  // EQ chunks context-model tangential parts (1.3; coder kEq only)
+  kHasAtlas = 1u << 3,           // an atlas chunk follows the kept (or base) chunk (1.4)
 };
-constexpr uint8_t kKnownFlags = kHasKeptExactly | kCompactBase | kTangentialContext;
+constexpr uint8_t kKnownFlags = kHasKeptExactly | kCompactBase | kTangentialContext | kHasAtlas;
 
 // lambda and the tangential factor travel as log2 codes in 1/kLogCodeScale steps;
 // the encoder codes with the value the decoder will rebuild from the code.
@@ -79,6 +88,11 @@ constexpr int kMaxLevels = 12;
 constexpr uint64_t kMaxChunkBytes = uint64_t{1} << 32;
 constexpr uint32_t kMaxBaseVertices = 1u << 20;
 constexpr uint64_t kMaxFinestFaces = uint64_t{1} << 24;
+// Atlas grid side in texels (the largest texture WebGL 2 guarantees is 2048; GPUs
+// commonly take 16384).
+constexpr uint32_t kMaxAtlasSide = 16384;
+// Texels inside each atlas cell's border, kept free of the triangles it holds.
+constexpr uint32_t kMaxAtlasGutter = 255;
 
 // Depths of the base chunk the encoder tries, and the Draco depth of the kept chunk
 // (listed here because its precision is a format promise: "kept exactly" to this

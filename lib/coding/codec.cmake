@@ -4,6 +4,8 @@
 set(EQMESH_CODEC_DIR "${CMAKE_CURRENT_LIST_DIR}")
 
 add_library(eqmesh_decoder STATIC
+  ${EQMESH_CODEC_DIR}/atlas/atlas_layout.cpp
+  ${EQMESH_CODEC_DIR}/atlas/seam_split.cpp
   ${EQMESH_CODEC_DIR}/compact_base/compact_base_model.cpp
   ${EQMESH_CODEC_DIR}/compact_base/compact_base_decoder.cpp
   ${EQMESH_CODEC_DIR}/base_mesh_decoder.cpp
@@ -18,6 +20,7 @@ target_link_libraries(eqmesh_decoder PUBLIC eqmesh_eq_decoder eqmesh_zerotree eq
                       eqmesh_mesh Eigen3::Eigen PRIVATE draco::draco)
 
 add_library(eqmesh_encoder STATIC
+  ${EQMESH_CODEC_DIR}/atlas/attach_atlas.cpp
   ${EQMESH_CODEC_DIR}/compact_base/compact_base_encoder.cpp
   ${EQMESH_CODEC_DIR}/base_mesh_encoder.cpp
   ${EQMESH_CODEC_DIR}/semi_regular_reorder.cpp

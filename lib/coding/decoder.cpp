@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "coding/atlas/atlas_layout.h"
 #include "coding/base_mesh_decoder.h"
 #include "coding/compact_base/compact_base_decoder.h"
 #include "coding/level_codec.h"
@@ -31,7 +32,10 @@ StreamInfo MakeStreamInfo(const StreamHeader& h, size_t header_size) {
   s.base_size = h.base_size;
   s.kept_offset = s.base_offset + s.base_size;
   s.kept_size = h.kept_size;
-  uint64_t offset = s.kept_offset + s.kept_size;
+  s.has_atlas = h.has_atlas();
+  s.atlas_offset = s.kept_offset + s.kept_size;
+  s.atlas_size = h.atlas_size;
+  uint64_t offset = s.atlas_offset + s.atlas_size;
   s.prefix_size.push_back(offset);
   for (const uint64_t size : h.level_sizes) {
     s.level_offsets.push_back(offset);
@@ -150,6 +154,22 @@ StatusOr<SemiRegularMesh> DecodeSemiRegular(const uint8_t* data, size_t size,
     info->truncated = size < s.total_size;
   }
   return mesh;
+}
+
+StatusOr<std::optional<AtlasLayout>> DecodeAtlas(const uint8_t* data, size_t size, const SemiRegularMesh& mesh) {
+  EQMESH_ASSIGN_OR_RETURN(const StreamInfo s, ReadStreamInfo(data, size));
+  if (!s.has_atlas) return std::optional<AtlasLayout>();
+  if (size < s.atlas_offset + s.atlas_size) return CorruptStream("eqm stream truncated before the atlas chunk ends");
+  EQMESH_ASSIGN_OR_RETURN(AtlasLayout atlas, ReadAtlasChunk(data + s.atlas_offset, static_cast<size_t>(s.atlas_size),
+                                                            AtlasFaces(mesh)));
+  return std::optional<AtlasLayout>(std::move(atlas));
+}
+
+std::vector<Face> AtlasFaces(const SemiRegularMesh& mesh) {
+  std::vector<Face> faces = mesh.hierarchy.BaseFaces();
+  const uint32_t offset = mesh.hierarchy.NumVertices(0);
+  for (const Face& f : mesh.kept_exactly.faces) faces.push_back({f[0] + offset, f[1] + offset, f[2] + offset});
+  return faces;
 }
 
 StatusOr<Mesh> Decode(const uint8_t* data, size_t size, const DecodeOptions& options,

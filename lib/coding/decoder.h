@@ -34,8 +34,10 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
+#include "coding/atlas/atlas_layout.h"
 #include "coding/bitstream_shared.h"
 #include "core/status.h"
 #include "mesh/mesh.h"
@@ -57,9 +59,11 @@ struct StreamInfo {
   bool has_kept_exactly = false;
   bool has_compact_base = false;  // base chunk is a compact chunk (1.2), not Draco
   bool has_tangential_context = false;  // EQ tangential parts context-modelled (1.3)
+  bool has_atlas = false;               // an atlas chunk gives TEXCOORD_0 (1.4)
   uint64_t header_size = 0;
   uint64_t base_offset = 0, base_size = 0;
   uint64_t kept_offset = 0, kept_size = 0;  // size 0 when absent
+  uint64_t atlas_offset = 0, atlas_size = 0;  // size 0 when absent
   std::vector<uint64_t> level_offsets;      // chunk of refinement j -> j+1
   std::vector<uint64_t> level_sizes;
   uint64_t total_size = 0;                  // bytes of the complete stream
@@ -108,5 +112,14 @@ StatusOr<Mesh> Decode(const uint8_t* data, size_t size, const DecodeOptions& opt
 StatusOr<SemiRegularMesh> DecodeSemiRegular(const uint8_t* data, size_t size,
                                             const DecodeOptions& options = {},
                                             DecodeInfo* info = nullptr);
+
+// The faces an atlas lays out: the base faces, then the kept-exactly faces with
+// their vertex indices moved past the base vertices.
+std::vector<Face> AtlasFaces(const SemiRegularMesh& mesh);
+
+// The stream's texture atlas, validated against `mesh` (its DecodeSemiRegular
+// result, at any level); empty when the stream has none. With
+// FaceCornerTexCoords and SplitLevelAtSeams (coding/atlas/) it gives TEXCOORD_0.
+StatusOr<std::optional<AtlasLayout>> DecodeAtlas(const uint8_t* data, size_t size, const SemiRegularMesh& mesh);
 
 }  // namespace eqmesh

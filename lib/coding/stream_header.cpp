@@ -34,6 +34,7 @@ std::vector<uint8_t> WriteStreamHeader(const StreamHeader& h) {
   w.PutF32(h.quantum);
   w.PutVarint(h.base_size);
   if (h.has_kept()) w.PutVarint(h.kept_size);
+  if (h.has_atlas()) w.PutVarint(h.atlas_size);
   for (const uint64_t s : h.level_sizes) w.PutVarint(s);
   return w.Take();
 }
@@ -117,6 +118,10 @@ Status ReadChunkTable(ByteReader* r, StreamHeader* h) {
     EQMESH_RETURN_IF_ERROR(r->ReadBoundedVarint(bitstream::kMaxChunkBytes, "kept chunk size",
                                                 &h->kept_size));
     if (h->kept_size == 0) return r->Corrupt("empty kept-exactly chunk");
+  }
+  if (h->has_atlas()) {
+    EQMESH_RETURN_IF_ERROR(r->ReadBoundedVarint(bitstream::kMaxChunkBytes, "atlas chunk size", &h->atlas_size));
+    if (h->atlas_size == 0) return r->Corrupt("empty atlas chunk");
   }
   h->level_sizes.resize(static_cast<size_t>(h->levels));
   for (uint64_t& s : h->level_sizes) {

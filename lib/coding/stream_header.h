@@ -13,7 +13,7 @@ namespace eqmesh {
 
 struct StreamHeader {
   uint8_t version_major = bitstream::kVersionMajor;
-  uint8_t version_minor = bitstream::kVersionMinor;
+  uint8_t version_minor = bitstream::kVersionMinorWithoutAtlas;
   bitstream::TransformId transform = bitstream::TransformId::kUnlifted;
   bitstream::CoderId coder = bitstream::CoderId::kEq;
   int levels = 0;
@@ -23,11 +23,13 @@ struct StreamHeader {
   float quantum = 1.0f;
   uint64_t base_size = 0;
   uint64_t kept_size = 0;  // 0 unless flags has kHasKeptExactly
+  uint64_t atlas_size = 0; // 0 unless flags has kHasAtlas
   std::vector<uint64_t> level_sizes;
 
   bool has_kept() const { return (flags & bitstream::kHasKeptExactly) != 0; }
   bool has_compact_base() const { return (flags & bitstream::kCompactBase) != 0; }
   bool has_tangential_context() const { return (flags & bitstream::kTangentialContext) != 0; }
+  bool has_atlas() const { return (flags & bitstream::kHasAtlas) != 0; }
   double lambda() const;
   double tangential_factor() const;
 };

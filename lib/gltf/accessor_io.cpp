@@ -131,6 +131,35 @@ StatusOr<std::vector<Vec3>> ReadVec3Accessor(const tinygltf::Model& model, int a
   return out;
 }
 
+StatusOr<std::vector<std::array<double, 2>>> ReadTexcoordAccessor(const tinygltf::Model& model, int accessor,
+                                                                   const std::string& what) {
+  if (accessor < 0 || static_cast<size_t>(accessor) >= model.accessors.size()) {
+    return ParseError(what + " accessor " + std::to_string(accessor) + " does not exist");
+  }
+  const tinygltf::Accessor& a = model.accessors[static_cast<size_t>(accessor)];
+  const int ct = a.componentType;
+  const size_t size = ct == TINYGLTF_COMPONENT_TYPE_FLOAT                            ? 4
+                      : ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT && a.normalized ? 2
+                      : ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && a.normalized  ? 1
+                                                                                     : 0;
+  if (size == 0 || a.type != TINYGLTF_TYPE_VEC2) {
+    return UnsupportedFeature(what + " is not a float or normalized unsigned VEC2 accessor");
+  }
+  EQMESH_ASSIGN_OR_RETURN(const ElementSpan span, LocateElements(model, accessor, 2 * size, what));
+  std::vector<std::array<double, 2>> out(span.count);
+  for (size_t i = 0; i < span.count; ++i) {
+    const unsigned char* p = span.first + i * span.stride;
+    for (size_t c = 0; c < 2; ++c) {
+      const unsigned char* q = p + c * size;
+      out[i][c] = size == 4 ? LoadUnaligned<float>(q) : size == 2 ? LoadUnaligned<uint16_t>(q) / 65535.0 : *q / 255.0;
+    }
+    if (!std::isfinite(out[i][0]) || !std::isfinite(out[i][1])) {
+      return ParseError(what + " value " + std::to_string(i) + " is not finite");
+    }
+  }
+  return out;
+}
+
 StatusOr<std::vector<uint32_t>> ReadIndexAccessor(const tinygltf::Model& model, int accessor,
                                                   size_t vertex_count) {
   if (accessor < 0 || static_cast<size_t>(accessor) >= model.accessors.size()) {
@@ -183,8 +212,45 @@ std::vector<Vec3> UnitVertexNormals(const Mesh& mesh) {
   return normals;
 }
 
+namespace {
+
+std::vector<uint8_t> Vec2Bytes(const std::vector<std::array<float, 2>>& values) {
+  std::vector<uint8_t> out;
+  out.reserve(values.size() * 8);
+  for (const auto& v : values) AppendBytes(&out, v.data(), 8);
+  return out;
+}
+
+// TEXCOORD_0 as float VEC2 (glTF requires no min / max for it).
+int WriteTexcoords(tinygltf::Model* model, const std::vector<std::array<float, 2>>& texcoords, int accessor,
+                   bool store_data) {
+  tinygltf::Accessor& a = model->accessors[static_cast<size_t>(accessor)];
+  ClearData(&a);
+  a.type = TINYGLTF_TYPE_VEC2;
+  a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+  a.count = texcoords.size();
+  if (!store_data) return -1;
+  const std::vector<uint8_t> bytes = Vec2Bytes(texcoords);
+  a.bufferView = AppendBufferView(model, bytes.data(), bytes.size(), TINYGLTF_TARGET_ARRAY_BUFFER);
+  return a.bufferView;
+}
+
+}  // namespace
+
 StatusOr<std::vector<int>> WriteGeometry(tinygltf::Model* model, const Mesh& mesh,
                                          const GeometryAccessors& accessors, bool store_data) {
+  return WriteGeometry(model, {&mesh, nullptr, nullptr}, accessors, store_data);
+}
+
+StatusOr<std::vector<int>> WriteGeometry(tinygltf::Model* model, const GeometryData& data,
+                                         const GeometryAccessors& accessors, bool store_data) {
+  const Mesh& mesh = *data.mesh;
+  if (data.texcoords != nullptr && data.texcoords->size() != mesh.positions.size()) {
+    return InternalError("texture coordinates do not match the vertices");
+  }
+  if (data.normals != nullptr && data.normals->size() != mesh.positions.size()) {
+    return InternalError("normals do not match the vertices");
+  }
   if (mesh.positions.empty() || mesh.faces.empty()) return InvalidMesh("decoded mesh is empty");
   for (const Vec3& p : mesh.positions) {
     if (!FitsFloat(p)) return InvalidMesh("a coordinate is not finite or beyond float range");
@@ -207,7 +273,7 @@ StatusOr<std::vector<int>> WriteGeometry(tinygltf::Model* model, const Mesh& mes
     nor.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
     nor.count = mesh.positions.size();
     if (store_data) {
-      const std::vector<uint8_t> bytes = Vec3Bytes(UnitVertexNormals(mesh));
+      const std::vector<uint8_t> bytes = Vec3Bytes(data.normals != nullptr ? *data.normals : UnitVertexNormals(mesh));
       nor.bufferView = AppendBufferView(model, bytes.data(), bytes.size(), TINYGLTF_TARGET_ARRAY_BUFFER);
       views.push_back(nor.bufferView);
     }
@@ -221,6 +287,10 @@ StatusOr<std::vector<int>> WriteGeometry(tinygltf::Model* model, const Mesh& mes
     const std::vector<uint8_t> bytes = IndexBytes(mesh, index_type);
     idx.bufferView = AppendBufferView(model, bytes.data(), bytes.size(), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
     views.push_back(idx.bufferView);
+  }
+  if (accessors.texcoord >= 0 && data.texcoords != nullptr) {
+    const int view = WriteTexcoords(model, *data.texcoords, accessors.texcoord, store_data);
+    if (view >= 0) views.push_back(view);
   }
   return views;
 }

@@ -3,6 +3,7 @@
 // as float32 POSITION, unit NORMAL and UNSIGNED_SHORT / UNSIGNED_INT indices.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -17,6 +18,10 @@ namespace eqmesh::gltf {
 // Float VEC3 accessor data (no sparse); `what` names it in errors.
 StatusOr<std::vector<Vec3>> ReadVec3Accessor(const tinygltf::Model& model, int accessor,
                                              const std::string& what);
+
+// TEXCOORD data: float, or normalized unsigned byte / short, VEC2 (no sparse).
+StatusOr<std::vector<std::array<double, 2>>> ReadTexcoordAccessor(const tinygltf::Model& model, int accessor,
+                                                                   const std::string& what);
 
 // Unsigned SCALAR index data (u8 / u16 / u32), each index < vertex_count.
 StatusOr<std::vector<uint32_t>> ReadIndexAccessor(const tinygltf::Model& model, int accessor,
@@ -34,6 +39,15 @@ struct GeometryAccessors {
   int position = -1;
   int normal = -1;  // -1: the primitive has no NORMAL
   int indices = -1;
+  int texcoord = -1;  // -1: the primitive has no TEXCOORD_0
+};
+
+// What WriteGeometry stores: positions and faces, per-vertex unit normals (null:
+// the spec's rule on `mesh`) and TEXCOORD_0 (null: none).
+struct GeometryData {
+  const Mesh* mesh = nullptr;
+  const std::vector<Vec3>* normals = nullptr;
+  const std::vector<std::array<float, 2>>* texcoords = nullptr;
 };
 
 // Sets type, component type, count and (for POSITION) float32 min / max of the three
@@ -42,6 +56,9 @@ struct GeometryAccessors {
 // bufferView. Returns the buffer views created. Fails on an empty mesh (glTF forbids
 // empty accessors) or coordinates beyond float range.
 StatusOr<std::vector<int>> WriteGeometry(tinygltf::Model* model, const Mesh& mesh,
+                                         const GeometryAccessors& accessors, bool store_data);
+// Same with given normals and TEXCOORD_0 (written to accessors.texcoord).
+StatusOr<std::vector<int>> WriteGeometry(tinygltf::Model* model, const GeometryData& data,
                                          const GeometryAccessors& accessors, bool store_data);
 
 // A one-mesh, one-node scene holding `mesh` (positions, normals, indices).

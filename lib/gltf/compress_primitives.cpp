@@ -6,38 +6,113 @@
 #include "gltf/accessor_io.h"
 #include "gltf/buffer_layout.h"
 #include "gltf/extension.h"
+#include "gltf/material_textures.h"
 
 namespace eqmesh::gltf {
 namespace {
 
-bool UsesTextures(const tinygltf::Material& m) {
-  return m.pbrMetallicRoughness.baseColorTexture.index >= 0 ||
-         m.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0 || m.normalTexture.index >= 0 ||
-         m.occlusionTexture.index >= 0 || m.emissiveTexture.index >= 0;
+// Empty when the textures of primitive p's material can move to a new atlas, else
+// why not; *tex_coord receives the TEXCOORD set they sample (-1: none).
+std::string TextureDisqualification(const tinygltf::Model& model, const tinygltf::Primitive& p, int* tex_coord) {
+  *tex_coord = -1;
+  if (p.material < 0 || static_cast<size_t>(p.material) >= model.materials.size()) return "";
+  const std::string m = "material " + std::to_string(p.material);
+  for (const TextureSlot& slot : UsedTextureSlots(model.materials[static_cast<size_t>(p.material)])) {
+    if (slot.IsNormalMap()) return m + " has a normal map (" + slot.Name() + "), which eqmesh does not re-express yet";
+    if (slot.index < 0 || static_cast<size_t>(slot.index) >= model.textures.size()) return m + " names a missing texture";
+    const tinygltf::Texture& texture = model.textures[static_cast<size_t>(slot.index)];
+    if (!texture.extensions.empty() || texture.source < 0 ||
+        static_cast<size_t>(texture.source) >= model.images.size()) {
+      return m + " samples texture " + std::to_string(slot.index) + ", whose image is not a plain PNG or JPEG source";
+    }
+    if (*tex_coord >= 0 && slot.tex_coord != *tex_coord) return m + " samples two TEXCOORD sets";
+    *tex_coord = slot.tex_coord;
+  }
+  if (*tex_coord >= 0 && p.attributes.count("TEXCOORD_" + std::to_string(*tex_coord)) == 0) {
+    return m + " samples TEXCOORD_" + std::to_string(*tex_coord) + ", which the primitive lacks";
+  }
+  return "";
 }
 
 // Empty when the primitive can be compressed, else why not.
 std::string Disqualification(const tinygltf::Model& model, const tinygltf::Primitive& p,
-                             const ContainerOptions& options) {
+                             const ContainerOptions& options, int* tex_coord) {
   if (p.mode != -1 && p.mode != TINYGLTF_MODE_TRIANGLES) return "mode " + std::to_string(p.mode) + " is not TRIANGLES";
   for (const auto& [name, value] : p.extensions) {
     if (name == kExtensionName || name == "KHR_draco_mesh_compression") return "already compressed with " + name;
   }
   if (!p.targets.empty()) return "has morph targets, which remeshing cannot carry";
-  // Even with drop_other_attributes: a textured material without TEXCOORD_n is invalid glTF.
-  if (p.material >= 0 && static_cast<size_t>(p.material) < model.materials.size() &&
-      UsesTextures(model.materials[static_cast<size_t>(p.material)])) {
-    return "material " + std::to_string(p.material) + " samples textures, which need TEXCOORD_n that remeshing cannot carry";
-  }
+  const std::string textures = TextureDisqualification(model, p, tex_coord);
+  if (!textures.empty()) return textures;
   if (p.attributes.count("POSITION") == 0) return "has no POSITION";
+  const std::string sampled = *tex_coord >= 0 ? "TEXCOORD_" + std::to_string(*tex_coord) : "";
   if (!options.drop_other_attributes) {
     for (const auto& [semantic, accessor] : p.attributes) {
-      if (semantic != "POSITION" && semantic != "NORMAL") {
+      if (semantic != "POSITION" && semantic != "NORMAL" && semantic != sampled) {
         return "has attribute " + semantic + ", which remeshing cannot carry (drop_other_attributes drops it)";
       }
     }
   }
   return "";
+}
+
+// Image file bytes of image i (its buffer view, or the bytes the reader kept).
+StatusOr<std::vector<uint8_t>> ImageBytes(const tinygltf::Model& model, int i) {
+  const tinygltf::Image& image = model.images[static_cast<size_t>(i)];
+  if (image.bufferView < 0) {
+    if (image.image.empty()) return ParseError("image " + std::to_string(i) + " has no data");
+    return std::vector<uint8_t>(image.image.begin(), image.image.end());
+  }
+  if (static_cast<size_t>(image.bufferView) >= model.bufferViews.size()) return ParseError("image view missing");
+  const tinygltf::BufferView& view = model.bufferViews[static_cast<size_t>(image.bufferView)];
+  if (view.buffer < 0 || static_cast<size_t>(view.buffer) >= model.buffers.size()) return ParseError("image buffer missing");
+  const std::vector<unsigned char>& data = model.buffers[static_cast<size_t>(view.buffer)].data;
+  if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset) {
+    return ParseError("image " + std::to_string(i) + " extends past its buffer");
+  }
+  const auto first = data.begin() + static_cast<std::ptrdiff_t>(view.byteOffset);
+  return std::vector<uint8_t>(first, first + static_cast<std::ptrdiff_t>(view.byteLength));
+}
+
+// Slots sampling the same texture the same way share one painted atlas image:
+// job k of the result is painted once and every slot mapped to k samples it.
+std::vector<size_t> JobOfEachSlot(const std::vector<TextureSlot>& slots, std::vector<size_t>* first_slot_of_job) {
+  std::vector<size_t> job(slots.size());
+  first_slot_of_job->clear();
+  for (size_t i = 0; i < slots.size(); ++i) {
+    job[i] = first_slot_of_job->size();
+    for (size_t k = 0; k < first_slot_of_job->size(); ++k) {
+      const TextureSlot& other = slots[(*first_slot_of_job)[k]];
+      if (other.index == slots[i].index && other.uv_transform == slots[i].uv_transform) job[i] = k;
+    }
+    if (job[i] == first_slot_of_job->size()) first_slot_of_job->push_back(i);
+  }
+  return job;
+}
+
+// What the compressor needs to know of a textured primitive's material.
+Status ReadTextures(const tinygltf::Model& model, const tinygltf::Primitive& p, int tex_coord,
+                    PrimitiveGeometry* out) {
+  if (tex_coord < 0) return Status::Ok();
+  EQMESH_ASSIGN_OR_RETURN(out->texcoords, ReadTexcoordAccessor(model, p.attributes.at("TEXCOORD_" + std::to_string(tex_coord)),
+                                                               "TEXCOORD_" + std::to_string(tex_coord)));
+  if (out->texcoords.size() != out->mesh.positions.size()) return ParseError("TEXCOORD and POSITION counts differ");
+  const std::vector<TextureSlot> slots = UsedTextureSlots(model.materials[static_cast<size_t>(p.material)]);
+  std::vector<size_t> first_slots;
+  JobOfEachSlot(slots, &first_slots);
+  for (size_t first : first_slots) {
+    const TextureSlot& slot = slots[first];
+    const tinygltf::Texture& texture = model.textures[static_cast<size_t>(slot.index)];
+    TextureJob job;
+    EQMESH_ASSIGN_OR_RETURN(job.encoded, ImageBytes(model, texture.source));
+    if (texture.sampler >= 0 && static_cast<size_t>(texture.sampler) < model.samplers.size()) {
+      job.wrap_s = model.samplers[static_cast<size_t>(texture.sampler)].wrapS;
+      job.wrap_t = model.samplers[static_cast<size_t>(texture.sampler)].wrapT;
+    }
+    job.uv_transform = slot.uv_transform;
+    out->textures.push_back(std::move(job));
+  }
+  return Status::Ok();
 }
 
 class PrimitiveCompressor {
@@ -48,9 +123,12 @@ class PrimitiveCompressor {
   PrimitiveOutcome Compress(size_t mesh_index, size_t primitive_index);
   const std::set<int>& old_accessors() const { return old_accessors_; }
   const std::set<int>& old_views() const { return old_views_; }
+  std::set<int>* mutable_old_views() { return &old_views_; }
+  bool textures_replaced() const { return textures_replaced_; }
 
  private:
   Status Replace(tinygltf::Primitive* p, const CompressedGeometry& geometry);
+  void ReplaceTextures(tinygltf::Primitive* p, const CompressedGeometry& geometry);
   void RememberOldData(const tinygltf::Primitive& p);
   int NewAccessor() {
     model_->accessors.emplace_back();
@@ -62,6 +140,7 @@ class PrimitiveCompressor {
   const ContainerOptions& options_;
   std::set<int> old_accessors_;
   std::set<int> old_views_;
+  bool textures_replaced_ = false;
 };
 
 void PrimitiveCompressor::RememberOldData(const tinygltf::Primitive& p) {
@@ -83,22 +162,56 @@ Status PrimitiveCompressor::Replace(tinygltf::Primitive* p, const CompressedGeom
   if (geometry.chunk_lengths.empty() || total != geometry.stream.size()) {
     return InternalError("chunk lengths do not add up to the stream size");
   }
-  const GeometryAccessors accessors{NewAccessor(), NewAccessor(), NewAccessor()};
-  EQMESH_RETURN_IF_ERROR(WriteGeometry(model_, geometry.decoded, accessors, options_.fallback).status());
+  const bool textured = !geometry.texcoords.empty();
+  const GeometryAccessors accessors{NewAccessor(), NewAccessor(), NewAccessor(), textured ? NewAccessor() : -1};
+  const GeometryData data{&geometry.decoded, geometry.normals.empty() ? nullptr : &geometry.normals,
+                          textured ? &geometry.texcoords : nullptr};
+  EQMESH_RETURN_IF_ERROR(WriteGeometry(model_, data, accessors, options_.fallback).status());
   NormalMeshExtension ext;
   ext.buffer_view = AppendBufferView(model_, geometry.stream.data(), geometry.stream.size(), 0);
   ext.levels = static_cast<int>(geometry.chunk_lengths.size()) - 1;
   ext.level_ranges = RangesFromLengths(geometry.chunk_lengths);
   ext.position_accessor = accessors.position;
   ext.normal_accessor = accessors.normal;
+  ext.texcoord_accessor = accessors.texcoord;
   RememberOldData(*p);
   // NORMAL is always declared: without it glTF asks for flat shading, which shows
   // every facet of a remeshed scan.
   p->attributes = {{"POSITION", accessors.position}, {"NORMAL", accessors.normal}};
+  if (textured) {
+    p->attributes["TEXCOORD_0"] = accessors.texcoord;
+    ReplaceTextures(p, geometry);
+  }
   p->indices = accessors.indices;
   p->mode = TINYGLTF_MODE_TRIANGLES;
   p->extensions[kExtensionName] = ExtensionToValue(ext);
   return Status::Ok();
+}
+
+// The primitive gets a copy of its material whose slots sample the new atlas
+// images (TEXCOORD_0, no transform), each a new texture with the old sampler.
+void PrimitiveCompressor::ReplaceTextures(tinygltf::Primitive* p, const CompressedGeometry& geometry) {
+  tinygltf::Material material = model_->materials[static_cast<size_t>(p->material)];
+  const std::vector<TextureSlot> slots = UsedTextureSlots(material);
+  std::vector<size_t> first_slots;
+  const std::vector<size_t> job = JobOfEachSlot(slots, &first_slots);
+  std::vector<int> new_texture(first_slots.size());
+  for (size_t k = 0; k < first_slots.size(); ++k) {
+    const tinygltf::Texture old_texture = model_->textures[static_cast<size_t>(slots[first_slots[k]].index)];
+    tinygltf::Image image = model_->images[static_cast<size_t>(old_texture.source)];
+    image.bufferView = AppendBufferView(model_, geometry.textures[k].data(), geometry.textures[k].size(), 0);
+    image.image.clear();
+    image.uri.clear();
+    model_->images.push_back(image);
+    tinygltf::Texture texture = old_texture;
+    texture.source = static_cast<int>(model_->images.size()) - 1;
+    model_->textures.push_back(texture);
+    new_texture[k] = static_cast<int>(model_->textures.size()) - 1;
+  }
+  for (size_t i = 0; i < slots.size(); ++i) RetargetSlot(slots[i], new_texture[job[i]], &material);
+  model_->materials.push_back(material);
+  p->material = static_cast<int>(model_->materials.size()) - 1;
+  textures_replaced_ = true;
 }
 
 PrimitiveOutcome PrimitiveCompressor::Compress(size_t mesh_index, size_t primitive_index) {
@@ -106,18 +219,32 @@ PrimitiveOutcome PrimitiveCompressor::Compress(size_t mesh_index, size_t primiti
   PrimitiveOutcome out;
   out.mesh = static_cast<int>(mesh_index);
   out.primitive = static_cast<int>(primitive_index);
-  out.reason = Disqualification(*model_, p, options_);
+  int tex_coord = -1;
+  out.reason = Disqualification(*model_, p, options_, &tex_coord);
   if (!out.reason.empty()) return out;
+  PrimitiveGeometry input;
+  Status read;
   auto mesh = ReadTrianglePrimitive(*model_, p);
-  if (!mesh.ok()) {
-    out.reason = mesh.status().ToString();
-    out.failure = mesh.status();
+  if (mesh.ok()) {
+    input.mesh = std::move(mesh).value();
+    read = ReadTextures(*model_, p, tex_coord, &input);
+  } else {
+    read = mesh.status();
+  }
+  if (!read.ok()) {
+    out.reason = read.ToString();
+    out.failure = read;
     return out;
   }
-  out.input_vertices = CountReferencedVertices(*mesh);
-  out.input_triangles = mesh->faces.size();
+  out.input_vertices = CountReferencedVertices(input.mesh);
+  out.input_triangles = input.mesh.faces.size();
   const std::string label = "mesh " + std::to_string(mesh_index) + " primitive " + std::to_string(primitive_index);
-  auto geometry = compressor_(*mesh, label);
+  auto geometry = compressor_(input, label);
+  if (geometry.ok() && tex_coord >= 0 &&
+      (geometry->texcoords.empty() || geometry->textures.size() != input.textures.size())) {
+    geometry = InternalError("the compressor returned no texture atlas for material " + std::to_string(p.material) +
+                             "'s textures");
+  }
   Status status = geometry.ok() ? Replace(&p, *geometry) : geometry.status();
   if (!status.ok()) {
     out.reason = status.ToString();
@@ -151,6 +278,7 @@ Status CompressPrimitives(tinygltf::Model* model, const GeometryCompressor& comp
     AddExtensionName(&model->extensionsUsed, kExtensionName);
     if (!options.fallback) AddExtensionName(&model->extensionsRequired, kExtensionName);
   }
+  if (worker.textures_replaced()) RemoveUnusedMaterials(model, worker.mutable_old_views());
   return RemoveUnusedData(model, worker.old_accessors(), worker.old_views());
 }
 

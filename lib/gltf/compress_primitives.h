@@ -4,6 +4,7 @@
 // gltf_converter.h plugs in the remesher and encoder, tests plug in stand-ins.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -17,24 +18,46 @@
 
 namespace eqmesh::gltf {
 
+// A texture the primitive's material samples, to be painted into the primitive's
+// new atlas.
+struct TextureJob {
+  std::vector<uint8_t> encoded;  // the image file (PNG or JPEG)
+  int wrap_s = 10497, wrap_t = 10497;
+  // KHR_texture_transform as u' = m[0] u + m[1] v + m[2], v' = m[3] u + m[4] v + m[5].
+  std::array<double, 6> uv_transform{1, 0, 0, 0, 1, 0};
+};
+
+// One primitive as the compressor sees it.
+struct PrimitiveGeometry {
+  Mesh mesh;  // local space, vertices as stored
+  // The TEXCOORD_n its material samples, per vertex; empty when it samples none.
+  std::vector<std::array<double, 2>> texcoords;
+  std::vector<TextureJob> textures;
+};
+
 struct CompressedGeometry {
   std::vector<uint8_t> stream;
-  std::vector<uint64_t> chunk_lengths;  // levels + 1: header+base+kept, then each level
+  std::vector<uint64_t> chunk_lengths;  // levels + 1: header+base+kept+atlas, then each level
   Mesh decoded;                         // full-resolution decoded mesh (placeholders, fallback)
+  std::vector<Vec3> normals;            // per decoded vertex; empty: the spec rule on `decoded`
+  std::vector<std::array<float, 2>> texcoords;  // TEXCOORD_0 of a textured primitive
+  std::vector<std::vector<uint8_t>> textures;   // per TextureJob: the atlas image, same format
   double psnr_db = 0;                   // decoded vs. input, when measured (else 0)
 };
 
-// Compresses one primitive's local-space mesh; `label` ("mesh 0 primitive 1") is
-// for progress and errors. An error leaves that primitive unchanged.
-using GeometryCompressor = std::function<StatusOr<CompressedGeometry>(const Mesh& mesh, const std::string& label)>;
+// Compresses one primitive; `label` ("mesh 0 primitive 1") is for progress and
+// errors. An error leaves that primitive unchanged.
+using GeometryCompressor =
+    std::function<StatusOr<CompressedGeometry>(const PrimitiveGeometry& primitive, const std::string& label)>;
 
 struct ContainerOptions {
   // Write the decoded geometry as real accessors and list the extension in
   // extensionsUsed only, so loaders without it still open the file (spec rule 12).
   bool fallback = false;
-  // Compress primitives with attributes other than POSITION / NORMAL (TEXCOORD_0,
-  // COLOR_0, ...) by dropping those attributes; false leaves such primitives as
-  // they are (remeshing cannot carry per-vertex data).
+  // Compress primitives with attributes other than POSITION, NORMAL and the
+  // TEXCOORD_n their material samples (COLOR_0, TANGENT, ...) by dropping those
+  // attributes; false leaves such primitives as they are (remeshing cannot carry
+  // per-vertex data).
   bool drop_other_attributes = false;
 };
 

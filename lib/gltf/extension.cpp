@@ -62,10 +62,13 @@ Status CheckRangesTile(const std::vector<ByteRange>& ranges) {
 Status ReadAttributes(const tinygltf::Value& object, NormalMeshExtension* ext) {
   if (!object.IsObject()) return ParseError("attributes is not an object");
   for (const std::string& key : object.Keys()) {
-    int* slot = key == "POSITION" ? &ext->position_accessor
-                : key == "NORMAL" ? &ext->normal_accessor
-                                  : nullptr;
-    if (slot == nullptr) return ParseError("attributes." + key + " is not allowed (POSITION, NORMAL only)");
+    int* slot = key == "POSITION"     ? &ext->position_accessor
+                : key == "NORMAL"     ? &ext->normal_accessor
+                : key == "TEXCOORD_0" ? &ext->texcoord_accessor
+                                      : nullptr;
+    if (slot == nullptr) {
+      return ParseError("attributes." + key + " is not allowed (POSITION, NORMAL, TEXCOORD_0 only)");
+    }
     if (!ReadIndex(object.Get(key), slot)) return ParseError("attributes." + key + " is not an accessor index");
   }
   if (ext->position_accessor < 0) return ParseError("attributes.POSITION is missing");
@@ -113,6 +116,7 @@ tinygltf::Value ExtensionToValue(const NormalMeshExtension& ext) {
   tinygltf::Value::Object attributes;
   attributes["POSITION"] = tinygltf::Value(ext.position_accessor);
   if (ext.normal_accessor >= 0) attributes["NORMAL"] = tinygltf::Value(ext.normal_accessor);
+  if (ext.texcoord_accessor >= 0) attributes["TEXCOORD_0"] = tinygltf::Value(ext.texcoord_accessor);
   tinygltf::Value::Object object;
   object["bufferView"] = tinygltf::Value(ext.buffer_view);
   object["levels"] = tinygltf::Value(ext.levels);
@@ -140,7 +144,7 @@ Status CheckAccessorShape(const tinygltf::Model& model, int index, const char* w
 Status CheckPrimitiveShape(const NormalMeshExtension& ext, const tinygltf::Primitive& p) {
   if (p.mode != -1 && p.mode != TINYGLTF_MODE_TRIANGLES) return ParseError("mode is not TRIANGLES (rule 2)");
   for (const auto& [semantic, accessor] : p.attributes) {
-    if (semantic != "POSITION" && semantic != "NORMAL") {
+    if (semantic != "POSITION" && semantic != "NORMAL" && semantic != "TEXCOORD_0") {
       return ParseError("attribute " + semantic + " is not allowed on a compressed primitive (rule 3)");
     }
   }
@@ -155,6 +159,10 @@ Status CheckPrimitiveShape(const NormalMeshExtension& ext, const tinygltf::Primi
   if (primitive_normal != ext.normal_accessor) {
     return ParseError("attributes.NORMAL differs from the primitive's NORMAL (rule 5)");
   }
+  const auto uv = p.attributes.find("TEXCOORD_0");
+  if ((uv == p.attributes.end() ? -1 : uv->second) != ext.texcoord_accessor) {
+    return ParseError("attributes.TEXCOORD_0 differs from the primitive's TEXCOORD_0 (rule 5)");
+  }
   return Status::Ok();
 }
 
@@ -166,6 +174,10 @@ Status CheckExtensionAgainstModel(const NormalMeshExtension& ext, const tinygltf
   EQMESH_RETURN_IF_ERROR(CheckAccessorShape(model, ext.position_accessor, "POSITION", TINYGLTF_TYPE_VEC3, fallback));
   if (ext.normal_accessor >= 0) {
     EQMESH_RETURN_IF_ERROR(CheckAccessorShape(model, ext.normal_accessor, "NORMAL", TINYGLTF_TYPE_VEC3, fallback));
+  }
+  if (ext.texcoord_accessor >= 0) {
+    EQMESH_RETURN_IF_ERROR(
+        CheckAccessorShape(model, ext.texcoord_accessor, "TEXCOORD_0", TINYGLTF_TYPE_VEC2, fallback));
   }
   EQMESH_RETURN_IF_ERROR(CheckAccessorShape(model, primitive.indices, "indices", TINYGLTF_TYPE_SCALAR, fallback));
   if (ext.buffer_view < 0 || static_cast<size_t>(ext.buffer_view) >= model.bufferViews.size()) {

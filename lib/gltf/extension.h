@@ -33,6 +33,7 @@ struct NormalMeshExtension {
   std::vector<ByteRange> level_ranges;   // J + 1 entries, inside the buffer view
   int position_accessor = -1;
   int normal_accessor = -1;              // -1 when the primitive has no NORMAL
+  int texcoord_accessor = -1;            // TEXCOORD_0 from the stream's atlas; -1 without
 };
 
 // Reads the extension object. Checks the JSON shape and the rules that need nothing

@@ -11,6 +11,7 @@
 #include "gltf/accessor_io.h"
 #include "gltf/gltf_io.h"
 #include "gltf/stream_decoder.h"
+#include "gltf/textured_compression.h"
 #include "mesh/file_bytes.h"
 #include "mesh/mesh_io.h"
 
@@ -29,7 +30,10 @@ bool IsGltfFile(const std::string& path) {
   return bytes.ok() && bytes->size() >= 4 && std::memcmp(bytes->data(), "glTF", 4) == 0;
 }
 
-StatusOr<CompressedGeometry> CompressWithEqmesh(const ConvertOptions& options, const Mesh& mesh) {
+StatusOr<CompressedGeometry> CompressWithEqmesh(const ConvertOptions& options, const PrimitiveGeometry& primitive) {
+  const bool textured = !primitive.texcoords.empty();
+  const Mesh welded = textured ? WeldedByPosition(primitive.mesh) : Mesh();
+  const Mesh& mesh = textured ? welded : primitive.mesh;
   RemeshReport remesh_report;
   RemeshOptions remesh = options.remesh;
   // The floor the stream must meet, as a floor for the remesh (plus coding's margin).
@@ -53,10 +57,14 @@ StatusOr<CompressedGeometry> CompressWithEqmesh(const ConvertOptions& options, c
                   "itself measures %.2f dB)", encode_report.psnr_db, options.min_psnr, ceiling);
     return Status(StatusCode::kTargetOutOfReach, text);
   }
+  out.psnr_db = encode_report.psnr_measured ? encode_report.psnr_db : 0.0;
+  if (textured) {
+    EQMESH_RETURN_IF_ERROR(AddAtlasAndTextures(primitive, options.texture_size, &out));
+    return out;
+  }
   EQMESH_ASSIGN_OR_RETURN(out.chunk_lengths, EqmeshStreamLayout()(out.stream.data(), out.stream.size()));
   // Placeholder counts and bounds come from the decoded data (spec rule 6).
   EQMESH_ASSIGN_OR_RETURN(out.decoded, Decode(out.stream.data(), out.stream.size()));
-  out.psnr_db = encode_report.psnr_measured ? encode_report.psnr_db : 0.0;
   return out;
 }
 
@@ -79,8 +87,8 @@ Status CheckFailures(const ConvertReport& report, const ConvertOptions& options)
 }  // namespace
 
 GeometryCompressor MakeEqmeshCompressor(const ConvertOptions& options) {
-  return [options](const Mesh& mesh, const std::string& label) -> StatusOr<CompressedGeometry> {
-    auto out = CompressWithEqmesh(options, mesh);
+  return [options](const PrimitiveGeometry& primitive, const std::string& label) -> StatusOr<CompressedGeometry> {
+    auto out = CompressWithEqmesh(options, primitive);
     if (!out.ok()) return out.status().WithContext(label);
     return out;
   };

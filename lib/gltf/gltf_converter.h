@@ -6,6 +6,7 @@
 // a one-mesh, one-node scene.
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 #include <tiny_gltf.h>
@@ -33,6 +34,9 @@ struct ConvertOptions {
   // primitive (dB, the `eqmesh compare` meter) is left unchanged, as one that
   // cannot be compressed: a broken remesh is never shipped. 0: no floor.
   double min_psnr = 60.0;
+  // Side of a textured primitive's atlas images in texels; 0: each input
+  // texture's own size.
+  uint32_t texture_size = 0;
 };
 
 // The remesher + encoder as a GeometryCompressor (also measures the decoded PSNR

@@ -41,6 +41,10 @@ Status CheckStreamAgreesWithJson(const DecodedStream& decoded, const NormalMeshE
   if (RangesFromLengths(decoded.chunk_lengths) != ext.level_ranges) {
     return CorruptStream("the stream's chunk sizes differ from levelByteRanges (rule 11)");
   }
+  if (decoded.texcoords.empty() != (ext.texcoord_accessor < 0)) {
+    return CorruptStream(ext.texcoord_accessor < 0 ? "the stream has an atlas but the extension declares no TEXCOORD_0 (rule 5)"
+                                                   : "the extension declares TEXCOORD_0 but the stream has no atlas (rule 5)");
+  }
   if (decoded.level_decoded != level) {
     return CorruptStream("decoded level " + std::to_string(decoded.level_decoded) + " instead of " +
                          std::to_string(level));
@@ -96,7 +100,7 @@ int PrimitiveDecoder::ClaimAccessor(int index) {
 
 void PrimitiveDecoder::MarkStaleData(const tinygltf::Primitive& p, const NormalMeshExtension& ext) {
   stale_views_.insert(ext.buffer_view);
-  for (int a : {ext.position_accessor, ext.normal_accessor, p.indices}) {
+  for (int a : {ext.position_accessor, ext.normal_accessor, ext.texcoord_accessor, p.indices}) {
     if (a >= 0 && model_->accessors[static_cast<size_t>(a)].bufferView >= 0) {
       stale_views_.insert(model_->accessors[static_cast<size_t>(a)].bufferView);
     }
@@ -116,10 +120,13 @@ Status PrimitiveDecoder::Decode(size_t mesh_index, size_t primitive_index, Primi
 
   MarkStaleData(p, ext);
   GeometryAccessors accessors{ClaimAccessor(ext.position_accessor), ClaimAccessor(ext.normal_accessor),
-                              ClaimAccessor(p.indices)};
-  EQMESH_RETURN_IF_ERROR(WriteGeometry(model_, decoded.mesh, accessors, true).status());
+                              ClaimAccessor(p.indices), ClaimAccessor(ext.texcoord_accessor)};
+  const GeometryData data{&decoded.mesh, decoded.normals.empty() ? nullptr : &decoded.normals,
+                          decoded.texcoords.empty() ? nullptr : &decoded.texcoords};
+  EQMESH_RETURN_IF_ERROR(WriteGeometry(model_, data, accessors, true).status());
   p.attributes["POSITION"] = accessors.position;
   if (accessors.normal >= 0) p.attributes["NORMAL"] = accessors.normal;
+  if (accessors.texcoord >= 0) p.attributes["TEXCOORD_0"] = accessors.texcoord;
   p.indices = accessors.indices;
   p.mode = TINYGLTF_MODE_TRIANGLES;
   p.extensions.erase(kExtensionName);

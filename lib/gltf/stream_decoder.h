@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -14,7 +15,11 @@
 namespace eqmesh::gltf {
 
 struct DecodedStream {
-  Mesh mesh;                           // the decoded level, kept components appended
+  // The decoded level, kept components appended; with an atlas, split at its seams
+  // (see coding/atlas/seam_split.h).
+  Mesh mesh;
+  std::vector<Vec3> normals;  // unit, per vertex of `mesh`, from the welded level; empty: the spec rule on `mesh`
+  std::vector<std::array<float, 2>> texcoords;  // TEXCOORD_0; empty without an atlas
   int stream_levels = 0;               // J as the stream header states it
   int level_decoded = 0;               // K
   std::vector<uint64_t> chunk_lengths; // J + 1: header+base+kept, then each level chunk

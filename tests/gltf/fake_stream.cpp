@@ -109,9 +109,9 @@ StatusOr<gltf::DecodedStream> DecodeFakeStream(const uint8_t* data, size_t size,
 }
 
 gltf::GeometryCompressor FakeCompressor(int levels) {
-  return [levels](const Mesh& mesh, const std::string&) -> StatusOr<gltf::CompressedGeometry> {
+  return [levels](const gltf::PrimitiveGeometry& primitive, const std::string&) -> StatusOr<gltf::CompressedGeometry> {
     gltf::CompressedGeometry out;
-    out.stream = MakeFakeStream(mesh, levels);
+    out.stream = MakeFakeStream(primitive.mesh, levels);
     EQMESH_ASSIGN_OR_RETURN(gltf::DecodedStream decoded, DecodeFakeStream(out.stream.data(), out.stream.size(), -1));
     out.chunk_lengths = decoded.chunk_lengths;
     out.decoded = std::move(decoded.mesh);

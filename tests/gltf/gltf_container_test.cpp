@@ -96,8 +96,8 @@ gltf::DecodedStream AsEmbedded(gltf::DecodedStream d, int coder) {
 }
 
 gltf::GeometryCompressor EmbeddedFakeCompressor(int levels) {
-  return [levels](const Mesh& mesh, const std::string& label) -> StatusOr<gltf::CompressedGeometry> {
-    EQMESH_ASSIGN_OR_RETURN(gltf::CompressedGeometry out, testing::FakeCompressor(levels)(mesh, label));
+  return [levels](const gltf::PrimitiveGeometry& primitive, const std::string& label) -> StatusOr<gltf::CompressedGeometry> {
+    EQMESH_ASSIGN_OR_RETURN(gltf::CompressedGeometry out, testing::FakeCompressor(levels)(primitive, label));
     gltf::DecodedStream lengths;
     lengths.chunk_lengths = out.chunk_lengths;
     out.chunk_lengths = AsEmbedded(std::move(lengths), gltf::kEmbeddedCoderId).chunk_lengths;
@@ -168,7 +168,7 @@ TEST(GltfExtension, RejectsObjectsBreakingTheRules) {
   with("negative offset", [](nlohmann::json& j) { j["levelByteRanges"][0][0] = -1; });
   with("fractional length", [](nlohmann::json& j) { j["levelByteRanges"][0][1] = 2140.5; });
   with("no POSITION", [](nlohmann::json& j) { j["attributes"].erase("POSITION"); });
-  with("extra attribute", [](nlohmann::json& j) { j["attributes"]["TEXCOORD_0"] = 3; });
+  with("extra attribute", [](nlohmann::json& j) { j["attributes"]["COLOR_0"] = 3; });
   for (const auto& [name, j] : cases) {
     EXPECT_FALSE(gltf::ParseExtension(ToValue(j)).ok()) << name;
   }
@@ -213,7 +213,7 @@ TEST(GltfContainer, CompressedFileKeepsTheSceneAndDropsOldGeometry) {
   const std::vector<uint8_t> glb = CompressedRichScene(false, &report);
   EXPECT_EQ(report.compressed, 2u);
   EXPECT_EQ(report.unchanged, 1u);
-  EXPECT_NE(report.primitives[2].reason.find("samples textures"), std::string::npos) << report.primitives[2].reason;
+  EXPECT_NE(report.primitives[2].reason.find("no texture atlas"), std::string::npos) << report.primitives[2].reason;
   auto model = gltf::ReadGltfModelFromBytes(glb, "compressed.glb");
   ASSERT_TRUE(model.ok()) << model.status().ToString();
   const tinygltf::Model original = testing::MakeRichScene();
@@ -399,10 +399,17 @@ TEST(GltfContainer, JsonThatContradictsTheStreamIsAnErrorOfThatPrimitive) {
   // A primitive attribute the spec forbids (rule 3).
   auto model2 = gltf::ReadGltfModelFromBytes(glb, "x.glb");
   ASSERT_TRUE(model2.ok());
-  model2->meshes[1].primitives[0].attributes["TEXCOORD_0"] = 0;
+  model2->meshes[1].primitives[0].attributes["COLOR_0"] = 0;
   const Status s = gltf::DecodeCompressedPrimitives(&*model2, FakeLoad());
   ASSERT_FALSE(s.ok());
-  EXPECT_NE(s.message().find("mesh 1 primitive 0: attribute TEXCOORD_0"), std::string::npos) << s.message();
+  EXPECT_NE(s.message().find("mesh 1 primitive 0: attribute COLOR_0"), std::string::npos) << s.message();
+  // TEXCOORD_0 the extension does not declare (rule 5).
+  auto model3 = gltf::ReadGltfModelFromBytes(glb, "x.glb");
+  ASSERT_TRUE(model3.ok());
+  model3->meshes[1].primitives[0].attributes["TEXCOORD_0"] = 0;
+  const Status s3 = gltf::DecodeCompressedPrimitives(&*model3, FakeLoad());
+  ASSERT_FALSE(s3.ok());
+  EXPECT_NE(s3.message().find("TEXCOORD_0 differs"), std::string::npos) << s3.message();
 }
 
 TEST(GltfContainer, PrimitivesThatCannotBeRemeshedAreLeftAndReported) {
@@ -430,8 +437,8 @@ TEST(GltfContainer, PrimitivesThatCannotBeRemeshedAreLeftAndReported) {
   gltf::ConvertReport report2;
   ASSERT_TRUE(gltf::CompressPrimitives(&again, testing::FakeCompressor(1), {false, true}, &report2).ok());
   EXPECT_EQ(report2.compressed, 2u);
-  // The textured quad stays: its material needs TEXCOORD_0.
-  EXPECT_NE(report2.primitives[2].reason.find("material 0 samples textures"), std::string::npos)
+  // The textured quad stays: the stand-in compressor paints no atlas for its textures.
+  EXPECT_NE(report2.primitives[2].reason.find("no texture atlas for material 0"), std::string::npos)
       << report2.primitives[2].reason;
 }
 

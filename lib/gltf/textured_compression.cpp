@@ -1,0 +1,112 @@
+#include "gltf/textured_compression.h"
+
+#include <algorithm>
+#include <cstring>
+#include <map>
+
+#include "coding/atlas/attach_atlas.h"
+#include "coding/decoder.h"
+#include "gltf/stream_decoder.h"
+#include "texture/atlas_builder.h"
+#include "texture/image_codec.h"
+#include "texture/texture_transfer.h"
+
+namespace eqmesh::gltf {
+namespace {
+
+// JPEG quality when the input's tables match no IJG quality.
+constexpr int kFallbackJpegQuality = 90;
+
+struct DecodedTexture {
+  texture::Image image;
+  texture::ImageFormat format = texture::ImageFormat::kPng;
+  int jpeg_quality = kFallbackJpegQuality;
+};
+
+StatusOr<DecodedTexture> DecodeJobImage(const TextureJob& job) {
+  DecodedTexture out;
+  EQMESH_ASSIGN_OR_RETURN(out.format, texture::SniffImageFormat(job.encoded.data(), job.encoded.size()));
+  EQMESH_ASSIGN_OR_RETURN(out.image, texture::DecodeImage(job.encoded.data(), job.encoded.size()));
+  if (out.format == texture::ImageFormat::kJpeg) {
+    const int q = texture::EstimateJpegQuality(job.encoded.data(), job.encoded.size());
+    if (q > 0) out.jpeg_quality = q;
+  }
+  return out;
+}
+
+// Gutters of 1/256 of the texture side (at least 2 texels) on each side of a cell
+// border: 8 texels between charts at 1024, which keeps charts apart down to the
+// 1/4-size mip level.
+uint32_t GutterFor(uint32_t width, uint32_t height) { return std::max<uint32_t>(2, std::min(width, height) / 256); }
+
+StatusOr<std::vector<uint8_t>> Encode(const texture::Image& image, const DecodedTexture& like) {
+  if (like.format == texture::ImageFormat::kJpeg) return texture::EncodeJpeg(image, like.jpeg_quality);
+  return texture::EncodePng(image);
+}
+
+Status UseTexturedDecode(CompressedGeometry* out) {
+  EQMESH_ASSIGN_OR_RETURN(out->chunk_lengths, EqmeshStreamLayout()(out->stream.data(), out->stream.size()));
+  EQMESH_ASSIGN_OR_RETURN(DecodedStream decoded, EqmeshStreamDecoder()(out->stream.data(), out->stream.size(), -1));
+  out->decoded = std::move(decoded.mesh);
+  out->normals = std::move(decoded.normals);
+  out->texcoords = std::move(decoded.texcoords);
+  return Status::Ok();
+}
+
+}  // namespace
+
+Mesh WeldedByPosition(const Mesh& mesh) {
+  std::map<std::array<uint64_t, 3>, uint32_t> first;
+  std::vector<uint32_t> remap(mesh.positions.size());
+  Mesh out;
+  for (size_t v = 0; v < mesh.positions.size(); ++v) {
+    std::array<uint64_t, 3> key{};
+    for (int c = 0; c < 3; ++c) {
+      const double x = mesh.positions[v][c] == 0.0 ? 0.0 : mesh.positions[v][c];  // -0 == +0
+      std::memcpy(&key[static_cast<size_t>(c)], &x, sizeof x);
+    }
+    const auto [it, added] = first.emplace(key, static_cast<uint32_t>(out.positions.size()));
+    if (added) out.positions.push_back(mesh.positions[v]);
+    remap[v] = it->second;
+  }
+  out.faces.reserve(mesh.faces.size());
+  for (const Face& f : mesh.faces) out.faces.push_back({remap[f[0]], remap[f[1]], remap[f[2]]});
+  return out;
+}
+
+Status AddAtlasAndTextures(const PrimitiveGeometry& input, uint32_t texture_size, CompressedGeometry* out) {
+  std::vector<DecodedTexture> sources;
+  uint32_t grid_w = texture_size, grid_h = texture_size;
+  for (const TextureJob& job : input.textures) {
+    EQMESH_ASSIGN_OR_RETURN(DecodedTexture t, DecodeJobImage(job));
+    if (texture_size == 0) {
+      grid_w = std::max(grid_w, static_cast<uint32_t>(t.image.width));
+      grid_h = std::max(grid_h, static_cast<uint32_t>(t.image.height));
+    }
+    sources.push_back(std::move(t));
+  }
+  if (grid_w == 0 || grid_h == 0) return InvalidArgument("a textured primitive without textures");
+  EQMESH_ASSIGN_OR_RETURN(const SemiRegularMesh decoded, DecodeSemiRegular(out->stream.data(), out->stream.size()));
+  EQMESH_ASSIGN_OR_RETURN(const AtlasLayout atlas,
+                          texture::BuildAtlas(decoded, {grid_w, grid_h, GutterFor(grid_w, grid_h)}));
+  EQMESH_ASSIGN_OR_RETURN(out->stream, AttachAtlas(out->stream, atlas));
+  EQMESH_RETURN_IF_ERROR(UseTexturedDecode(out));
+  const texture::TexturedInput textured{&input.mesh, &input.texcoords};
+  std::map<std::pair<uint32_t, uint32_t>, texture::TexelMap> maps;
+  for (size_t k = 0; k < sources.size(); ++k) {
+    const uint32_t w = texture_size > 0 ? texture_size : static_cast<uint32_t>(sources[k].image.width);
+    const uint32_t h = texture_size > 0 ? texture_size : static_cast<uint32_t>(sources[k].image.height);
+    const std::pair<uint32_t, uint32_t> size{w, h};
+    if (maps.count(size) == 0) {
+      EQMESH_ASSIGN_OR_RETURN(maps[size], texture::MapAtlasTexels(decoded, atlas, textured, w, h));
+    }
+    const TextureJob& job = input.textures[k];
+    const texture::SourceTexture source{&sources[k].image, job.wrap_s, job.wrap_t, job.uv_transform};
+    const texture::Image painted = texture::PaintAtlas(maps.at(size), textured, source);
+    EQMESH_ASSIGN_OR_RETURN(std::vector<uint8_t> bytes, Encode(painted, sources[k]));
+    out->textures.push_back(std::move(bytes));
+  }
+  return Status::Ok();
+}
+
+}  // namespace eqmesh::gltf

@@ -1,0 +1,25 @@
+// The texture half of compressing a textured primitive: an atlas laid out on the
+// decoded remesh joins the stream (TEXCOORD_0 then costs a few bytes per base
+// face), and every texture the material samples is painted into it from the input
+// (lib/texture/). Re-encoded in its input format: JPEG at the input's estimated
+// quality, PNG losslessly.
+#pragma once
+
+#include <cstdint>
+
+#include "core/status.h"
+#include "gltf/compress_primitives.h"
+
+namespace eqmesh::gltf {
+
+// The primitive's mesh with vertices at bitwise-identical positions merged (a
+// textured mesh is split along its UV seams; the remesher needs the surface).
+Mesh WeldedByPosition(const Mesh& mesh);
+
+// `out` holds the primitive's encoded stream (no atlas yet). Adds the atlas to it,
+// replaces chunk_lengths, decoded, normals and texcoords by the textured decode,
+// and fills `textures`. texture_size: the atlas images' side (0: each input
+// texture's own size, the grid the largest of them).
+Status AddAtlasAndTextures(const PrimitiveGeometry& input, uint32_t texture_size, CompressedGeometry* out);
+
+}  // namespace eqmesh::gltf
