@@ -1,15 +1,20 @@
 // eqmesh compare IN OTHER: Metro-style symmetric surface distance and
 // PSNR (peak = ORIGINAL's bounding-box diagonal). See lib/metrics/surface_distance.h.
+#include <cctype>
 #include <chrono>
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <string>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "gltf/gltf_loader.h"
+#include "gltf/surface_color.h"
 #include "mesh/mesh_io.h"
+#include "metrics/color_distance.h"
 #include "metrics/parallel_blocks.h"
 #include "metrics/surface_distance.h"
 #include "tools/command.h"
@@ -28,6 +33,7 @@ struct CompareArgs {
 
 struct CompareRun {
   SurfaceDistance d;
+  std::optional<ColorDistance> color;  // when both inputs are glTF and one is coloured
   size_t faces_original = 0, faces_other = 0;
   double read_seconds = 0.0, compare_seconds = 0.0;
 };
@@ -43,6 +49,35 @@ StatusOr<Mesh> LoadForCompare(const std::string& path) {
   if (status.ok()) return mesh;
   if (status.message().find(path) == std::string::npos) status = status.WithContext(path);
   return status;
+}
+
+bool IsGltfPath(std::string path) {
+  for (char& c : path) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  for (const char* suffix : {".glb", ".gltf"}) {
+    const std::string s = suffix;
+    if (path.size() >= s.size() && path.compare(path.size() - s.size(), s.size(), s) == 0) return true;
+  }
+  return false;
+}
+
+StatusOr<gltf::ColoredScene> LoadColored(const std::string& path) {
+  auto model = gltf::LoadGltf(path);
+  if (!model.ok()) return model.status();
+  auto scene = gltf::FlattenWithColor(*model);
+  if (!scene.ok()) return scene.status().WithContext(path);
+  return scene;
+}
+
+// The appearance meter on the geometry's samples: for two glTF scenes of which at
+// least one has a texture or COLOR_0 (else there is nothing to compare).
+StatusOr<std::optional<ColorDistance>> CompareSceneColors(const CompareArgs& args, uint64_t samples) {
+  if (!IsGltfPath(args.original) || !IsGltfPath(args.other)) return std::optional<ColorDistance>();
+  EQMESH_ASSIGN_OR_RETURN(const gltf::ColoredScene a, LoadColored(args.original));
+  EQMESH_ASSIGN_OR_RETURN(const gltf::ColoredScene b, LoadColored(args.other));
+  if (!a.varies && !b.varies) return std::optional<ColorDistance>();
+  EQMESH_ASSIGN_OR_RETURN(const ColorDistance d,
+                          CompareColors(a.mesh, a.color, b.mesh, b.color, {samples, args.seed, args.threads}));
+  return std::optional<ColorDistance>(d);
 }
 
 // JSON has no infinity: an exact match (rms 0) reports psnr_db as null.
@@ -66,6 +101,12 @@ nlohmann::json ToJson(const CompareArgs& args, const CompareRun& run) {
   j["hausdorff"] = d.hausdorff;
   j["bbox_diagonal"] = d.bbox_diagonal;
   j["psnr_db"] = FiniteOrNull(d.psnr_db);
+  if (run.color) {
+    j["color_rms"] = run.color->rms;
+    j["color_rms_ab"] = run.color->rms_ab;
+    j["color_rms_ba"] = run.color->rms_ba;
+    j["color_psnr_db"] = FiniteOrNull(run.color->psnr_db);
+  }
   j["samples"] = d.samples;
   j["seed"] = args.seed;
   j["threads"] = ResolveThreadCount(args.threads);
@@ -92,6 +133,10 @@ void PrintTable(const CompareArgs& args, const CompareRun& run) {
   } else {
     std::printf("psnr       inf (surfaces identical at every sample)\n");
   }
+  if (run.color) {
+    std::printf("colour     rms %.3f of 255 (%.3f / %.3f), psnr %.3f dB\n", run.color->rms, run.color->rms_ab,
+                run.color->rms_ba, run.color->psnr_db);
+  }
   std::printf("seconds    %.3f (read %.3f, compare %.3f)\n", run.read_seconds + run.compare_seconds,
               run.read_seconds, run.compare_seconds);
 }
@@ -100,7 +145,9 @@ int RunCompare(int argc, char** argv) {
   CLI::App app{
       "Metro-style surface distance between IN and OTHER: area-uniform samples on each\n"
       "surface, distance to the closest point of the other. RMS = max of the two directions;\n"
-      "PSNR = 20 log10(bbox diagonal of IN / RMS). Results do not depend on --threads."};
+      "PSNR = 20 log10(bbox diagonal of IN / RMS). Two glTF scenes of which one is textured or\n"
+      "coloured also get the colour error on the same samples (RGB against the closest point's,\n"
+      "peak 255, the worse direction: color_psnr_db). Results do not depend on --threads."};
   CompareArgs args;
   app.add_option("IN", args.original,
                  "reference mesh, e.g. the original (its bbox diagonal is the PSNR peak); any input format, "
@@ -130,8 +177,11 @@ int RunCompare(int argc, char** argv) {
   const auto compare_start = std::chrono::steady_clock::now();
   StatusOr<SurfaceDistance> d = CompareSurfaces(*a, *b, {args.samples, args.seed, args.threads});
   if (!d.ok()) return Fail("compare", args.original + " vs " + args.other + ": " + d.status().message());
-  run.compare_seconds = SecondsSince(compare_start);
   run.d = *d;
+  auto color = CompareSceneColors(args, d->samples);
+  if (!color.ok()) return Fail("compare", args.original + " vs " + args.other + ": colour: " + color.status().message());
+  run.color = *color;
+  run.compare_seconds = SecondsSince(compare_start);
   if (args.json) {
     std::printf("%s\n", ToJson(args, run).dump(2).c_str());
   } else {

@@ -5,8 +5,9 @@
 //       { progressive: true, onLevel: ( mesh, level, info ) => { ... } } ) );
 //
 // Every mesh with a compressed primitive is built here (GLTFLoader has no
-// per-primitive hook): the stream is decoded to positions, unit normals and
-// indices, and the placeholder accessors are never read. With `progressive` the
+// per-primitive hook): the stream is decoded to positions, unit normals, indices
+// and, for a stream with an atlas, TEXCOORD_0 (three.js' 'uv'), and the
+// placeholder accessors are never read. With `progressive` the
 // coarsest level is built first and each finer level then replaces the geometry in
 // place (clones made by GLTFLoader share it), fetching only the bytes that level
 // needs: HTTP Range requests for a stream in an external buffer, slices of the
@@ -307,6 +308,8 @@ function fillGeometry( geometry, decoded ) {
 	geometry.dispose();
 	geometry.setAttribute( 'position', new BufferAttribute( decoded.positions, 3 ) );
 	geometry.setAttribute( 'normal', new BufferAttribute( decoded.normals, 3 ) );
+	if ( decoded.texcoords ) geometry.setAttribute( 'uv', new BufferAttribute( decoded.texcoords, 2 ) );
+	else geometry.deleteAttribute( 'uv' );
 	geometry.setIndex( new BufferAttribute( decoded.indices, 1 ) );
 	geometry.computeBoundingBox();
 	geometry.computeBoundingSphere();
@@ -465,7 +468,7 @@ function checkPrimitiveShape( primitive, ext ) {
 
 	if ( primitive.mode !== undefined && primitive.mode !== 4 ) invalid( 'mode is not TRIANGLES (rule 2)' );
 	const attributes = Object.keys( primitive.attributes || {} );
-	const extra = attributes.find( ( a ) => a !== 'POSITION' && a !== 'NORMAL' );
+	const extra = attributes.find( ( a ) => a !== 'POSITION' && a !== 'NORMAL' && a !== 'TEXCOORD_0' );
 	if ( extra ) invalid( `attribute ${extra} is not allowed on a compressed primitive (rule 3)` );
 	if ( primitive.targets !== undefined ) invalid( 'morph targets are not allowed (rule 3)' );
 	if ( primitive.indices === undefined ) invalid( 'indices are missing (rule 4)' );
@@ -476,6 +479,11 @@ function checkPrimitiveShape( primitive, ext ) {
 
 	}
 	if ( mine.NORMAL !== primitive.attributes.NORMAL ) invalid( 'attributes.NORMAL differs from the primitive\'s NORMAL (rule 5)' );
+	if ( mine.TEXCOORD_0 !== primitive.attributes.TEXCOORD_0 ) {
+
+		invalid( 'attributes.TEXCOORD_0 differs from the primitive\'s TEXCOORD_0 (rule 5)' );
+
+	}
 
 }
 
@@ -515,6 +523,7 @@ function checkAccessors( json, primitive, ext, required ) {
 	};
 	check( primitive.attributes.POSITION, 'POSITION', 'VEC3', [ 5126 ] );
 	if ( primitive.attributes.NORMAL !== undefined ) check( primitive.attributes.NORMAL, 'NORMAL', 'VEC3', [ 5126 ] );
+	if ( primitive.attributes.TEXCOORD_0 !== undefined ) check( primitive.attributes.TEXCOORD_0, 'TEXCOORD_0', 'VEC2', [ 5126 ] );
 	check( primitive.indices, 'indices', 'SCALAR', [ 5123, 5125 ] );
 
 }
@@ -552,6 +561,11 @@ function checkAgainstHeader( ext, info ) {
 
 function checkFullCounts( json, primitive, ext, decoded ) {
 
+	if ( ( decoded.texcoords !== null ) !== ( primitive.attributes.TEXCOORD_0 !== undefined ) ) {
+
+		invalid( 'TEXCOORD_0 is declared exactly when the stream has an atlas (rule 5)' );
+
+	}
 	const vertices = decoded.positions.length / 3;
 	const position = json.accessors[ primitive.attributes.POSITION ];
 	const indices = json.accessors[ primitive.indices ];

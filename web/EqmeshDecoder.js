@@ -1,5 +1,5 @@
 // The eqmesh WebAssembly decoder as a small JS object: stream bytes in, typed
-// arrays (positions, unit normals, indices) out, errors as EqmeshError with the
+// arrays (positions, unit normals, TEXCOORD_0 when the stream has an atlas, indices) out, errors as EqmeshError with the
 // eqmesh StatusCode name. The wasm module (build-wasm/eqmesh_decoder.mjs, from
 // scripts/build-wasm.sh) hands the Draco base chunk to a Draco decoder module,
 // which three.js ships in examples/jsm/libs/draco/; loadDracoDecoderModule loads it.
@@ -184,10 +184,12 @@ export class EqmeshDecoder {
 		const indexCount = w._eqm_index_count( r );
 		const f32 = ( ptr, n ) => new Float32Array( w.HEAPU8.buffer, ptr, n ).slice();
 		const u32 = new Uint32Array( w.HEAPU8.buffer, w._eqm_indices( r ), indexCount );
+		const uv = w._eqm_texcoords( r );
 		return {
 			levelDecoded: w._eqm_level_decoded( r ),
 			positions: f32( w._eqm_positions( r ), vertices * 3 ),
 			normals: f32( w._eqm_normals( r ), vertices * 3 ),
+			texcoords: uv ? f32( uv, vertices * 2 ) : null,
 			// ext_spec rule 6: 16-bit indices whenever the level's vertices fit.
 			indices: vertices <= 65535 ? Uint16Array.from( u32 ) : u32.slice(),
 		};

@@ -131,8 +131,12 @@ StatusOr<std::vector<Vec3>> ReadVec3Accessor(const tinygltf::Model& model, int a
   return out;
 }
 
-StatusOr<std::vector<std::array<double, 2>>> ReadTexcoordAccessor(const tinygltf::Model& model, int accessor,
-                                                                   const std::string& what) {
+namespace {
+
+// `components` float, or normalized unsigned byte / short, values of a VEC2 /
+// VEC3 / VEC4 accessor (the leading `components` of each element), no sparse.
+StatusOr<std::vector<std::array<double, 4>>> ReadNormalizedVectors(const tinygltf::Model& model, int accessor,
+                                                                  const std::string& what, size_t components) {
   if (accessor < 0 || static_cast<size_t>(accessor) >= model.accessors.size()) {
     return ParseError(what + " accessor " + std::to_string(accessor) + " does not exist");
   }
@@ -142,21 +146,42 @@ StatusOr<std::vector<std::array<double, 2>>> ReadTexcoordAccessor(const tinygltf
                       : ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT && a.normalized ? 2
                       : ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && a.normalized  ? 1
                                                                                      : 0;
-  if (size == 0 || a.type != TINYGLTF_TYPE_VEC2) {
-    return UnsupportedFeature(what + " is not a float or normalized unsigned VEC2 accessor");
+  const size_t stored = a.type == TINYGLTF_TYPE_VEC2 ? 2 : a.type == TINYGLTF_TYPE_VEC3 ? 3 : a.type == TINYGLTF_TYPE_VEC4 ? 4 : 0;
+  if (size == 0 || stored < components) {
+    return UnsupportedFeature(what + " is not a float or normalized unsigned accessor of " + std::to_string(components) +
+                              "+ components");
   }
-  EQMESH_ASSIGN_OR_RETURN(const ElementSpan span, LocateElements(model, accessor, 2 * size, what));
-  std::vector<std::array<double, 2>> out(span.count);
+  EQMESH_ASSIGN_OR_RETURN(const ElementSpan span, LocateElements(model, accessor, stored * size, what));
+  std::vector<std::array<double, 4>> out(span.count);
   for (size_t i = 0; i < span.count; ++i) {
     const unsigned char* p = span.first + i * span.stride;
-    for (size_t c = 0; c < 2; ++c) {
+    for (size_t c = 0; c < components; ++c) {
       const unsigned char* q = p + c * size;
       out[i][c] = size == 4 ? LoadUnaligned<float>(q) : size == 2 ? LoadUnaligned<uint16_t>(q) / 65535.0 : *q / 255.0;
-    }
-    if (!std::isfinite(out[i][0]) || !std::isfinite(out[i][1])) {
-      return ParseError(what + " value " + std::to_string(i) + " is not finite");
+      if (!std::isfinite(out[i][c])) return ParseError(what + " value " + std::to_string(i) + " is not finite");
     }
   }
+  return out;
+}
+
+}  // namespace
+
+StatusOr<std::vector<std::array<double, 2>>> ReadTexcoordAccessor(const tinygltf::Model& model, int accessor,
+                                                                   const std::string& what) {
+  const tinygltf::Accessor* a = accessor >= 0 && static_cast<size_t>(accessor) < model.accessors.size()
+                                    ? &model.accessors[static_cast<size_t>(accessor)] : nullptr;
+  if (a != nullptr && a->type != TINYGLTF_TYPE_VEC2) return UnsupportedFeature(what + " is not a VEC2 accessor");
+  EQMESH_ASSIGN_OR_RETURN(const auto values, ReadNormalizedVectors(model, accessor, what, 2));
+  std::vector<std::array<double, 2>> out(values.size());
+  for (size_t i = 0; i < values.size(); ++i) out[i] = {values[i][0], values[i][1]};
+  return out;
+}
+
+StatusOr<std::vector<std::array<double, 3>>> ReadColorAccessor(const tinygltf::Model& model, int accessor,
+                                                                const std::string& what) {
+  EQMESH_ASSIGN_OR_RETURN(const auto values, ReadNormalizedVectors(model, accessor, what, 3));
+  std::vector<std::array<double, 3>> out(values.size());
+  for (size_t i = 0; i < values.size(); ++i) out[i] = {values[i][0], values[i][1], values[i][2]};
   return out;
 }
 

@@ -23,6 +23,11 @@ StatusOr<std::vector<Vec3>> ReadVec3Accessor(const tinygltf::Model& model, int a
 StatusOr<std::vector<std::array<double, 2>>> ReadTexcoordAccessor(const tinygltf::Model& model, int accessor,
                                                                    const std::string& what);
 
+// COLOR data (VEC3 or VEC4; RGB returned): float, or normalized unsigned byte /
+// short, no sparse.
+StatusOr<std::vector<std::array<double, 3>>> ReadColorAccessor(const tinygltf::Model& model, int accessor,
+                                                                const std::string& what);
+
 // Unsigned SCALAR index data (u8 / u16 / u32), each index < vertex_count.
 StatusOr<std::vector<uint32_t>> ReadIndexAccessor(const tinygltf::Model& model, int accessor,
                                                   size_t vertex_count);

@@ -56,24 +56,6 @@ std::string Disqualification(const tinygltf::Model& model, const tinygltf::Primi
   return "";
 }
 
-// Image file bytes of image i (its buffer view, or the bytes the reader kept).
-StatusOr<std::vector<uint8_t>> ImageBytes(const tinygltf::Model& model, int i) {
-  const tinygltf::Image& image = model.images[static_cast<size_t>(i)];
-  if (image.bufferView < 0) {
-    if (image.image.empty()) return ParseError("image " + std::to_string(i) + " has no data");
-    return std::vector<uint8_t>(image.image.begin(), image.image.end());
-  }
-  if (static_cast<size_t>(image.bufferView) >= model.bufferViews.size()) return ParseError("image view missing");
-  const tinygltf::BufferView& view = model.bufferViews[static_cast<size_t>(image.bufferView)];
-  if (view.buffer < 0 || static_cast<size_t>(view.buffer) >= model.buffers.size()) return ParseError("image buffer missing");
-  const std::vector<unsigned char>& data = model.buffers[static_cast<size_t>(view.buffer)].data;
-  if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset) {
-    return ParseError("image " + std::to_string(i) + " extends past its buffer");
-  }
-  const auto first = data.begin() + static_cast<std::ptrdiff_t>(view.byteOffset);
-  return std::vector<uint8_t>(first, first + static_cast<std::ptrdiff_t>(view.byteLength));
-}
-
 // Slots sampling the same texture the same way share one painted atlas image:
 // job k of the result is painted once and every slot mapped to k samples it.
 std::vector<size_t> JobOfEachSlot(const std::vector<TextureSlot>& slots, std::vector<size_t>* first_slot_of_job) {

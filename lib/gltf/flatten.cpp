@@ -39,10 +39,31 @@ uint64_t Budget(const tinygltf::Model& model) {
   return std::max(kMinBudget, kMaxAmplification * bytes);
 }
 
-class SceneFlattener {
+}  // namespace
+
+Status SpendBudget(uint64_t cost, uint64_t* budget) {
+  if (cost > *budget) {
+    return ResourceLimit("the flattened scene exceeds " + std::to_string(kMaxAmplification) +
+                         " vertices+faces per buffer byte (too much instancing)");
+  }
+  *budget -= cost;
+  return Status::Ok();
+}
+
+uint64_t FlattenBudget(const tinygltf::Model& model) { return Budget(model); }
+
+void AppendTransformed(const Mesh& part, const Eigen::Affine3d& world, Mesh* out) {
+  const uint32_t offset = static_cast<uint32_t>(out->positions.size());
+  for (const Vec3& v : part.positions) out->positions.push_back(world * v);
+  for (const Face& f : part.faces) out->faces.push_back({f[0] + offset, f[1] + offset, f[2] + offset});
+}
+
+namespace {
+
+class SceneWalker {
  public:
-  explicit SceneFlattener(const tinygltf::Model& model)
-      : model_(model), visited_(model.nodes.size(), false), budget_(Budget(model)) {}
+  SceneWalker(const tinygltf::Model& model, const PrimitiveVisitor& visit)
+      : model_(model), visit_(visit), visited_(model.nodes.size(), false) {}
 
   // glTF node graphs are forests. A hostile file may contain cycles or share a
   // child (node i -> i+1 twice, 40 times over, is 2^40 visits): refused.
@@ -62,7 +83,6 @@ class SceneFlattener {
     return Status::Ok();
   }
 
-  Mesh Take() { return std::move(out_); }
 
  private:
   Status AppendMesh(int mesh_index, const Transform& world) {
@@ -73,27 +93,15 @@ class SceneFlattener {
     for (size_t p = 0; p < primitives.size(); ++p) {
       const int mode = primitives[p].mode;
       if (mode != -1 && mode != TINYGLTF_MODE_TRIANGLES) continue;
-      auto part = ReadTrianglePrimitive(model_, primitives[p]);
-      if (!part.ok()) {
-        return part.status().WithContext("mesh " + std::to_string(mesh_index) + " primitive " + std::to_string(p));
-      }
-      const uint64_t cost = part->positions.size() + part->faces.size();
-      if (cost > budget_) {
-        return ResourceLimit("the flattened scene exceeds " + std::to_string(kMaxAmplification) +
-                             " vertices+faces per buffer byte (too much instancing)");
-      }
-      budget_ -= cost;
-      const uint32_t offset = static_cast<uint32_t>(out_.positions.size());
-      for (const Vec3& v : part->positions) out_.positions.push_back(world * v);
-      for (const Face& f : part->faces) out_.faces.push_back({f[0] + offset, f[1] + offset, f[2] + offset});
+      const std::string label = "mesh " + std::to_string(mesh_index) + " primitive " + std::to_string(p);
+      EQMESH_RETURN_IF_ERROR(visit_(primitives[p], label, world));
     }
     return Status::Ok();
   }
 
   const tinygltf::Model& model_;
+  const PrimitiveVisitor& visit_;
   std::vector<bool> visited_;
-  uint64_t budget_;
-  Mesh out_;
 };
 
 std::vector<int> RootNodes(const tinygltf::Model& model) {
@@ -113,12 +121,26 @@ std::vector<int> RootNodes(const tinygltf::Model& model) {
 
 }  // namespace
 
+Status VisitScenePrimitives(const tinygltf::Model& model, const PrimitiveVisitor& visit) {
+  SceneWalker walker(model, visit);
+  for (int root : RootNodes(model)) EQMESH_RETURN_IF_ERROR(walker.Visit(root, Transform::Identity(), 0));
+  return Status::Ok();
+}
+
 StatusOr<Mesh> FlattenToMesh(const tinygltf::Model& model) {
-  SceneFlattener flattener(model);
-  for (int root : RootNodes(model)) EQMESH_RETURN_IF_ERROR(flattener.Visit(root, Transform::Identity(), 0));
-  Mesh mesh = flattener.Take();
-  if (mesh.faces.empty()) return InvalidMesh("the scene has no triangles");
-  return mesh;
+  uint64_t budget = Budget(model);
+  Mesh out;
+  const PrimitiveVisitor append = [&](const tinygltf::Primitive& primitive, const std::string& label,
+                                     const Transform& world) -> Status {
+    auto part = ReadTrianglePrimitive(model, primitive);
+    if (!part.ok()) return part.status().WithContext(label);
+    EQMESH_RETURN_IF_ERROR(SpendBudget(part->positions.size() + part->faces.size(), &budget));
+    AppendTransformed(*part, world, &out);
+    return Status::Ok();
+  };
+  EQMESH_RETURN_IF_ERROR(VisitScenePrimitives(model, append));
+  if (out.faces.empty()) return InvalidMesh("the scene has no triangles");
+  return out;
 }
 
 }  // namespace eqmesh::gltf

@@ -15,9 +15,11 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
+#include <Eigen/Geometry>
 #include <tiny_gltf.h>
 
 #include "core/status.h"
@@ -71,5 +73,17 @@ Status WriteDecodedGlb(const tinygltf::Model& model, const std::string& path);
 // not a forest (a node reached twice) is a parse error; instancing beyond 64
 // flattened vertices + faces per buffer byte (at least 2^24) is a resource limit.
 StatusOr<Mesh> FlattenToMesh(const tinygltf::Model& model);
+
+// The walk FlattenToMesh makes: every TRIANGLES primitive of the default scene
+// with its world transform and a label ("mesh 2 primitive 0"), in scene order.
+using PrimitiveVisitor =
+    std::function<Status(const tinygltf::Primitive& primitive, const std::string& label, const Eigen::Affine3d& world)>;
+Status VisitScenePrimitives(const tinygltf::Model& model, const PrimitiveVisitor& visit);
+// FlattenToMesh's instancing rule: the vertices + faces a flattened scene may
+// hold, and the charge of one more part against it.
+uint64_t FlattenBudget(const tinygltf::Model& model);
+Status SpendBudget(uint64_t cost, uint64_t* budget);
+// Appends `part` moved by `world` to `out`.
+void AppendTransformed(const Mesh& part, const Eigen::Affine3d& world, Mesh* out);
 
 }  // namespace eqmesh::gltf

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <map>
 
+#include "core/status.h"
+
 namespace eqmesh::gltf {
 namespace {
 
@@ -181,6 +183,24 @@ std::vector<TextureSlot> UsedTextureSlots(const tinygltf::Material& m) {
 }
 
 void RetargetSlot(const TextureSlot& slot, int texture, tinygltf::Material* m) { SetSlot(slot, texture, true, m); }
+
+StatusOr<std::vector<uint8_t>> ImageBytes(const tinygltf::Model& model, int i) {
+  if (i < 0 || static_cast<size_t>(i) >= model.images.size()) return ParseError("image " + std::to_string(i) + " does not exist");
+  const tinygltf::Image& image = model.images[static_cast<size_t>(i)];
+  if (image.bufferView < 0) {
+    if (image.image.empty()) return ParseError("image " + std::to_string(i) + " has no data");
+    return std::vector<uint8_t>(image.image.begin(), image.image.end());
+  }
+  if (static_cast<size_t>(image.bufferView) >= model.bufferViews.size()) return ParseError("image view missing");
+  const tinygltf::BufferView& view = model.bufferViews[static_cast<size_t>(image.bufferView)];
+  if (view.buffer < 0 || static_cast<size_t>(view.buffer) >= model.buffers.size()) return ParseError("image buffer missing");
+  const std::vector<unsigned char>& data = model.buffers[static_cast<size_t>(view.buffer)].data;
+  if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset) {
+    return ParseError("image " + std::to_string(i) + " extends past its buffer");
+  }
+  const auto first = data.begin() + static_cast<std::ptrdiff_t>(view.byteOffset);
+  return std::vector<uint8_t>(first, first + static_cast<std::ptrdiff_t>(view.byteLength));
+}
 
 void RemoveUnusedMaterials(tinygltf::Model* model, std::set<int>* stale_views) {
   DropUnusedMaterials(model);

@@ -7,11 +7,14 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <set>
 #include <string>
 #include <vector>
 
 #include <tiny_gltf.h>
+
+#include "core/status.h"
 
 namespace eqmesh::gltf {
 
@@ -32,6 +35,10 @@ std::vector<TextureSlot> UsedTextureSlots(const tinygltf::Material& material);
 // Points `slot` of `material` at texture `texture`, sampled through TEXCOORD_0
 // with no KHR_texture_transform.
 void RetargetSlot(const TextureSlot& slot, int texture, tinygltf::Material* material);
+
+// The file bytes of image i (its buffer view, or the bytes the reader kept for
+// a URI), bounds-checked.
+StatusOr<std::vector<uint8_t>> ImageBytes(const tinygltf::Model& model, int i);
 
 // Drops materials no primitive uses, textures no material slot uses and images no
 // texture uses, renumbering every reference; a texture with extensions (another

@@ -50,13 +50,20 @@ size_t AreaSampler::FaceAtArea(double area) const {
 
 void AreaSampler::Sample(uint64_t n, uint64_t first, uint64_t count, SampleRng* rng,
                          std::vector<Vec3>* out) const {
+  Sample(n, first, count, rng, out, nullptr);
+}
+
+void AreaSampler::Sample(uint64_t n, uint64_t first, uint64_t count, SampleRng* rng, std::vector<Vec3>* out,
+                         std::vector<Where>* where) const {
   const double inv_n = 1.0 / static_cast<double>(n);
   for (uint64_t i = first; i < first + count; ++i) {
     const double quantile = (static_cast<double>(i) + rng->NextDouble()) * inv_n;
-    const Corners& c = faces_[FaceAtArea(quantile * total_area_)];
+    const size_t face = FaceAtArea(quantile * total_area_);
+    const Corners& c = faces_[face];
     const double s = std::sqrt(rng->NextDouble());
     const double r = rng->NextDouble();
     out->push_back((1.0 - s) * c.a + (s * (1.0 - r)) * c.b + (s * r) * c.c);
+    if (where != nullptr) where->push_back({static_cast<uint32_t>(face), {1.0 - s, s * (1.0 - r), s * r}});
   }
 }
 

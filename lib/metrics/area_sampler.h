@@ -12,6 +12,7 @@
 // random points in triangles", Graphics Gems 1990: sqrt warp).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -33,6 +34,15 @@ class AreaSampler {
   // *out. Draws exactly 3 numbers per sample from rng.
   void Sample(uint64_t n, uint64_t first, uint64_t count, SampleRng* rng,
               std::vector<Vec3>* out) const;
+
+  // The same samples (same draws) with the face each lies on and its
+  // barycentric coordinates there, for attributes measured at the samples.
+  struct Where {
+    uint32_t face = 0;
+    std::array<double, 3> barycentric{};
+  };
+  void Sample(uint64_t n, uint64_t first, uint64_t count, SampleRng* rng, std::vector<Vec3>* out,
+              std::vector<Where>* where) const;
 
  private:
   struct Corners {

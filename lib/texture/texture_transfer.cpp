@@ -87,8 +87,9 @@ int WrapIndex(int i, int n, int mode) {
   return std::clamp(i, 0, n - 1);
 }
 
-// Bilinear sample of texel centres, as a GPU's LINEAR filter does.
-void Sample(const SourceTexture& s, double u, double v, float* out) {
+}  // namespace
+
+void SampleBilinear(const SourceTexture& s, double u, double v, float* out) {
   const Image& im = *s.image;
   const double x = Wrap(u, s.wrap_s) * im.width - 0.5, y = Wrap(v, s.wrap_t) * im.height - 0.5;
   const int xi = static_cast<int>(std::floor(x)), yi = static_cast<int>(std::floor(y));
@@ -105,6 +106,8 @@ void Sample(const SourceTexture& s, double u, double v, float* out) {
     }
   }
 }
+
+namespace {
 
 // Each pass gives every empty texel with a filled 8-neighbour their mean: enough
 // passes to cross the gutters between cells.
@@ -207,7 +210,7 @@ Image PaintAtlas(const TexelMap& map, const TexturedInput& input, const SourceTe
       u += t.barycentric[k] * (*input.texcoords)[f[k]][0];
       v += t.barycentric[k] * (*input.texcoords)[f[k]][1];
     }
-    Sample(source, m[0] * u + m[1] * v + m[2], m[3] * u + m[4] * v + m[5], &color[i * channels]);
+    SampleBilinear(source, m[0] * u + m[1] * v + m[2], m[3] * u + m[4] * v + m[5], &color[i * channels]);
     filled[i] = true;
   }
   Dilate(map.width, map.height, channels, map.dilation_passes, &color, &filled);

@@ -52,6 +52,11 @@ struct SourceTexture {
   std::array<double, 6> uv_transform{1, 0, 0, 0, 1, 0};
 };
 
+// Bilinear sample of the texture at (u, v) after the sampler's wrap modes (the
+// transform is the caller's), as a GPU's LINEAR filter samples texel centres:
+// out receives image->channels values in [0, 255].
+void SampleBilinear(const SourceTexture& source, double u, double v, float* out);
+
 // Texel correspondences of `decoded` (full resolution) laid out by `atlas`, for an
 // image of width x height (the atlas grid scaled to it).
 StatusOr<TexelMap> MapAtlasTexels(const SemiRegularMesh& decoded, const AtlasLayout& atlas,

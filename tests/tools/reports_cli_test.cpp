@@ -1,7 +1,8 @@
 // What the `eqmesh` commands tell a user about what they wrote: `info` on a
 // compressed GLB, the per-primitive rate and PSNR of a .glb encode (the same
 // stream a .eqm encode writes), quality targets that cannot be met (a clear
-// error, no file), and one message per broken GLB whichever command reads it.
+// error, no file), one message per broken GLB whichever command reads it, and
+// the colour error `compare` adds for textured glTF.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -122,6 +123,22 @@ TEST(ReportsCli, BrokenGlbGetsOneMessageFromEveryCommand) {
     if (first.empty()) first = message;
     EXPECT_EQ(message, first) << command;
   }
+}
+
+// The appearance meter: two glTF scenes of which one is textured get
+// color_psnr_db on the geometry's samples; meshes without colour get none.
+TEST(ReportsCli, CompareMeasuresColourOfTexturedGltfOnly) {
+  if (!HaveSharedMeshes()) GTEST_SKIP() << "no ../shared/meshes";
+  const std::string duck = SharedPath("meshes/textured/duck.glb");
+  const nlohmann::json same = Json(RunTool("compare " + duck + " " + duck + " --samples 20000 --json"));
+  ASSERT_TRUE(same.contains("color_psnr_db")) << same.dump();
+  // null: an exact match (JSON has no infinity), as psnr_db.
+  EXPECT_TRUE(same["color_psnr_db"].is_null() || same["color_psnr_db"].get<double>() > 100.0) << same.dump();
+  EXPECT_LT(same["color_rms"].get<double>(), 0.01);
+  const ScratchDir dir("reports_colour");
+  const std::string sphere = WriteBumpySphere(dir);
+  const nlohmann::json plain = Json(RunTool("compare " + sphere + " " + sphere + " --samples 20000 --json"));
+  EXPECT_FALSE(plain.contains("color_psnr_db")) << plain.dump();
 }
 
 }  // namespace

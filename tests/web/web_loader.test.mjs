@@ -3,9 +3,11 @@
 // samples/web/ from a localhost server and must show every level with the vertex
 // and triangle counts of the native C++ decoder, stream a split .gltf level by
 // level with Range requests, and turn a corrupt stream into an error message
-// rather than a hang. scripts/test-web.sh prepares the inputs in EQMESH_WEB_WORK:
-// models/NAME.glb, models/split/NAME.gltf, corrupt.glb and native.json
-// ({ NAME: { "levels": J, "counts": [{ "vertices": V, "triangles": T }, ...] } }).
+// rather than a hang; a textured asset must render like its original from the same
+// camera. scripts/test-web.sh prepares the inputs in EQMESH_WEB_WORK:
+// models/NAME.glb, models/split/NAME.gltf, corrupt.glb, native.json
+// ({ NAME: { "levels": J, "counts": [{ "vertices": V, "triangles": T }, ...] } }) and,
+// with the shared meshes, models/duck_original.glb and its compressed models/duck.glb.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
@@ -180,5 +182,72 @@ test( 'a .glb picked by the user loads', async () => {
 	const info = await page.evaluate( () => window.eqmeshDemo.current.info );
 	assertCounts( MODEL, info, native[ MODEL ].levels );
 	await page.close();
+
+} );
+
+// Image PSNR of two screenshots over the pixels where either shows the object (the
+// background colour, #2a2f37, is left out: it would flatter the score).
+async function screenshotPsnr( page, a, b ) {
+
+	return page.evaluate( async ( [ a64, b64 ] ) => {
+
+		const pixels = async ( b64png ) => {
+
+			const image = await createImageBitmap( await ( await fetch( 'data:image/png;base64,' + b64png ) ).blob() );
+			const canvas = new OffscreenCanvas( image.width, image.height );
+			const context = canvas.getContext( '2d' );
+			context.drawImage( image, 0, 0 );
+			return context.getImageData( 0, 0, image.width, image.height ).data;
+
+		};
+		const [ pa, pb ] = await Promise.all( [ pixels( a64 ), pixels( b64 ) ] );
+		const background = [ 0x2a, 0x2f, 0x37 ];
+		const isBackground = ( p, i ) => background.every( ( c, k ) => Math.abs( p[ i + k ] - c ) <= 2 );
+		let sum = 0, count = 0;
+		for ( let i = 0; i < pa.length; i += 4 ) {
+
+			if ( isBackground( pa, i ) && isBackground( pb, i ) ) continue;
+			for ( let k = 0; k < 3; k ++ ) sum += ( pa[ i + k ] - pb[ i + k ] ) ** 2;
+			count += 3;
+
+		}
+		return { psnr: 10 * Math.log10( 255 * 255 / ( sum / Math.max( count, 1 ) ) ), objectPixels: count / 3 };
+
+	}, [ a.toString( 'base64' ), b.toString( 'base64' ) ] );
+
+}
+
+async function objectShot( model, file ) {
+
+	const page = await openDemo( servedPath( model ) );
+	assert.equal( ( await state( page ) ).state, 'ready', ( await state( page ) ).error );
+	await page.evaluate( () => document.getElementById( 'panel' ).style.setProperty( 'display', 'none' ) );
+	await page.waitForTimeout( 500 ); // a few frames
+	const shot = await page.screenshot( { path: file } );
+	return { page, shot };
+
+}
+
+test( 'a compressed textured asset renders like its original from the same camera', async ( t ) => {
+
+	const original = path.join( WORK, 'models', 'duck_original.glb' );
+	const compressed = path.join( WORK, 'models', 'duck.glb' );
+	if ( ! fs.existsSync( original ) || ! fs.existsSync( compressed ) ) {
+
+		t.skip( 'no textured test asset (../shared/meshes/textured/duck.glb)' );
+		return;
+
+	}
+	const a = await objectShot( original, path.join( WORK, 'screenshot_duck_original.png' ) );
+	const b = await objectShot( compressed, path.join( WORK, 'screenshot_duck_decoded.png' ) );
+	const hasUv = await b.page.evaluate( () => window.eqmeshDemo.current.meshes[ 0 ].geometry.getAttribute( 'uv' ) !== undefined );
+	assert.ok( hasUv, 'the decoded primitive has TEXCOORD_0' );
+	const { psnr, objectPixels } = await screenshotPsnr( b.page, a.shot, b.shot );
+	console.log( `textured duck: screenshot PSNR ${psnr.toFixed( 2 )} dB over ${objectPixels} object pixels` );
+	assert.ok( objectPixels > 10000, 'the duck fills part of the view' );
+	assert.ok( psnr >= 30, `screenshot PSNR ${psnr.toFixed( 2 )} dB < 30` );
+	assert.deepEqual( [ ...a.page.problems, ...b.page.problems ], [] );
+	await a.page.close();
+	await b.page.close();
 
 } );

@@ -1,5 +1,6 @@
 // The C API of the WebAssembly decoder (web/EqmeshDecoder.js is its only caller):
-// stream bytes and a finest level in; float32 positions, unit normals and uint32
+// stream bytes and a finest level in; float32 positions, unit normals, TEXCOORD_0
+// (streams with an atlas, split at its seams as the native loader does) and uint32
 // indices out, or an eqmesh StatusCode with its message. A result is one heap
 // object the caller reads through accessors and frees, so no C++ type crosses
 // the boundary and the JS side can copy the arrays straight out of the heap.
@@ -9,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "coding/atlas/seam_split.h"
 #include "coding/decoder.h"
 #include "mesh/mesh.h"
 
@@ -19,6 +21,7 @@ struct EqmResult {
   std::string message;
   std::vector<float> positions;
   std::vector<float> normals;
+  std::vector<float> texcoords;  // empty without an atlas
   std::vector<uint32_t> indices;
   int levels_in_stream = 0;
   int level_decoded = 0;
@@ -38,7 +41,7 @@ EqmResult* Failure(const eqmesh::Status& status) {
 void SetLayout(const eqmesh::StreamInfo& s, EqmResult* r) {
   r->levels_in_stream = s.levels;
   r->coder = static_cast<int>(s.coder);
-  r->chunk_lengths.assign(1, static_cast<double>(s.header_size + s.base_size + s.kept_size));
+  r->chunk_lengths.assign(1, static_cast<double>(s.header_size + s.base_size + s.kept_size + s.atlas_size));
   for (uint64_t size : s.level_sizes) r->chunk_lengths.push_back(static_cast<double>(size));
 }
 
@@ -66,6 +69,32 @@ void SetGeometry(const eqmesh::Mesh& mesh, EqmResult* r) {
   }
 }
 
+// The atlas's seams split vertices; positions and normals follow each copy from
+// the welded level (ext_spec B.7).
+void SetSplitGeometry(const eqmesh::SemiRegularMesh& decoded, const eqmesh::AtlasLayout& atlas, EqmResult* r) {
+  const eqmesh::Mesh welded = eqmesh::ExtractLevel(decoded, decoded.hierarchy.levels());
+  const std::vector<float> welded_normals = UnitNormals(welded);
+  const eqmesh::SeamSplitMesh split = eqmesh::SplitLevelAtSeams(
+      decoded, decoded.hierarchy.levels(), eqmesh::FaceCornerTexCoords(atlas, eqmesh::AtlasFaces(decoded)));
+  const size_t n = split.source_vertex.size();
+  r->positions.resize(n * 3);
+  r->normals.resize(n * 3);
+  r->texcoords.resize(n * 2);
+  for (size_t i = 0; i < n; ++i) {
+    const uint32_t v = split.source_vertex[i];
+    for (int c = 0; c < 3; ++c) {
+      r->positions[3 * i + c] = static_cast<float>(welded.positions[v][c]);
+      r->normals[3 * i + c] = welded_normals[3 * v + c];
+    }
+    r->texcoords[2 * i] = split.texcoords[i][0];
+    r->texcoords[2 * i + 1] = split.texcoords[i][1];
+  }
+  r->indices.resize(split.faces.size() * 3);
+  for (size_t f = 0; f < split.faces.size(); ++f) {
+    for (int c = 0; c < 3; ++c) r->indices[3 * f + c] = split.faces[f][c];
+  }
+}
+
 }  // namespace
 
 extern "C" {
@@ -77,12 +106,18 @@ EMSCRIPTEN_KEEPALIVE EqmResult* eqm_decode(const uint8_t* data, uint32_t size, i
   options.max_level = max_level;
   options.allow_truncated = max_level >= 0;
   eqmesh::DecodeInfo info;
-  eqmesh::StatusOr<eqmesh::Mesh> mesh = eqmesh::Decode(data, size, options, &info);
-  if (!mesh.ok()) return Failure(mesh.status());
+  eqmesh::StatusOr<eqmesh::SemiRegularMesh> decoded = eqmesh::DecodeSemiRegular(data, size, options, &info);
+  if (!decoded.ok()) return Failure(decoded.status());
+  eqmesh::StatusOr<std::optional<eqmesh::AtlasLayout>> atlas = eqmesh::DecodeAtlas(data, size, *decoded);
+  if (!atlas.ok()) return Failure(atlas.status());
   auto* r = new EqmResult;
   SetLayout(info.stream, r);
   r->level_decoded = info.levels_decoded;
-  SetGeometry(*mesh, r);
+  if (atlas->has_value()) {
+    SetSplitGeometry(*decoded, **atlas, r);
+  } else {
+    SetGeometry(eqmesh::ExtractLevel(*decoded, decoded->hierarchy.levels()), r);
+  }
   return r;
 }
 
@@ -105,6 +140,10 @@ EMSCRIPTEN_KEEPALIVE uint32_t eqm_vertex_count(const EqmResult* r) {
 }
 EMSCRIPTEN_KEEPALIVE const float* eqm_positions(const EqmResult* r) { return r->positions.data(); }
 EMSCRIPTEN_KEEPALIVE const float* eqm_normals(const EqmResult* r) { return r->normals.data(); }
+// TEXCOORD_0, two floats per vertex, or null when the stream has no atlas.
+EMSCRIPTEN_KEEPALIVE const float* eqm_texcoords(const EqmResult* r) {
+  return r->texcoords.empty() ? nullptr : r->texcoords.data();
+}
 EMSCRIPTEN_KEEPALIVE uint32_t eqm_index_count(const EqmResult* r) {
   return static_cast<uint32_t>(r->indices.size());
 }
