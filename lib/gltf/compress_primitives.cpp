@@ -7,94 +7,30 @@
 #include "gltf/buffer_layout.h"
 #include "gltf/extension.h"
 #include "gltf/material_textures.h"
+#include "gltf/primitive_appearance.h"
 
 namespace eqmesh::gltf {
 namespace {
 
-// Empty when the textures of primitive p's material can move to a new atlas, else
-// why not; *tex_coord receives the TEXCOORD set they sample (-1: none).
-std::string TextureDisqualification(const tinygltf::Model& model, const tinygltf::Primitive& p, int* tex_coord) {
-  *tex_coord = -1;
-  if (p.material < 0 || static_cast<size_t>(p.material) >= model.materials.size()) return "";
-  const std::string m = "material " + std::to_string(p.material);
-  for (const TextureSlot& slot : UsedTextureSlots(model.materials[static_cast<size_t>(p.material)])) {
-    if (slot.IsNormalMap()) return m + " has a normal map (" + slot.Name() + "), which eqmesh does not re-express yet";
-    if (slot.index < 0 || static_cast<size_t>(slot.index) >= model.textures.size()) return m + " names a missing texture";
-    const tinygltf::Texture& texture = model.textures[static_cast<size_t>(slot.index)];
-    if (!texture.extensions.empty() || texture.source < 0 ||
-        static_cast<size_t>(texture.source) >= model.images.size()) {
-      return m + " samples texture " + std::to_string(slot.index) + ", whose image is not a plain PNG or JPEG source";
-    }
-    if (*tex_coord >= 0 && slot.tex_coord != *tex_coord) return m + " samples two TEXCOORD sets";
-    *tex_coord = slot.tex_coord;
-  }
-  if (*tex_coord >= 0 && p.attributes.count("TEXCOORD_" + std::to_string(*tex_coord)) == 0) {
-    return m + " samples TEXCOORD_" + std::to_string(*tex_coord) + ", which the primitive lacks";
-  }
-  return "";
-}
-
 // Empty when the primitive can be compressed, else why not.
 std::string Disqualification(const tinygltf::Model& model, const tinygltf::Primitive& p,
-                             const ContainerOptions& options, int* tex_coord) {
+                             const ContainerOptions& options, AppearancePlan* plan) {
   if (p.mode != -1 && p.mode != TINYGLTF_MODE_TRIANGLES) return "mode " + std::to_string(p.mode) + " is not TRIANGLES";
   for (const auto& [name, value] : p.extensions) {
     if (name == kExtensionName || name == "KHR_draco_mesh_compression") return "already compressed with " + name;
   }
   if (!p.targets.empty()) return "has morph targets, which remeshing cannot carry";
-  const std::string textures = TextureDisqualification(model, p, tex_coord);
-  if (!textures.empty()) return textures;
+  const std::string appearance = AppearanceDisqualification(model, p, plan);
+  if (!appearance.empty()) return appearance;
   if (p.attributes.count("POSITION") == 0) return "has no POSITION";
-  const std::string sampled = *tex_coord >= 0 ? "TEXCOORD_" + std::to_string(*tex_coord) : "";
   if (!options.drop_other_attributes) {
     for (const auto& [semantic, accessor] : p.attributes) {
-      if (semantic != "POSITION" && semantic != "NORMAL" && semantic != sampled) {
+      if (semantic != "POSITION" && semantic != "NORMAL" && !CarriedByAtlas(*plan, semantic)) {
         return "has attribute " + semantic + ", which remeshing cannot carry (drop_other_attributes drops it)";
       }
     }
   }
   return "";
-}
-
-// Slots sampling the same texture the same way share one painted atlas image:
-// job k of the result is painted once and every slot mapped to k samples it.
-std::vector<size_t> JobOfEachSlot(const std::vector<TextureSlot>& slots, std::vector<size_t>* first_slot_of_job) {
-  std::vector<size_t> job(slots.size());
-  first_slot_of_job->clear();
-  for (size_t i = 0; i < slots.size(); ++i) {
-    job[i] = first_slot_of_job->size();
-    for (size_t k = 0; k < first_slot_of_job->size(); ++k) {
-      const TextureSlot& other = slots[(*first_slot_of_job)[k]];
-      if (other.index == slots[i].index && other.uv_transform == slots[i].uv_transform) job[i] = k;
-    }
-    if (job[i] == first_slot_of_job->size()) first_slot_of_job->push_back(i);
-  }
-  return job;
-}
-
-// What the compressor needs to know of a textured primitive's material.
-Status ReadTextures(const tinygltf::Model& model, const tinygltf::Primitive& p, int tex_coord,
-                    PrimitiveGeometry* out) {
-  if (tex_coord < 0) return Status::Ok();
-  EQMESH_ASSIGN_OR_RETURN(out->texcoords, ReadTexcoordAccessor(model, p.attributes.at("TEXCOORD_" + std::to_string(tex_coord)),
-                                                               "TEXCOORD_" + std::to_string(tex_coord)));
-  if (out->texcoords.size() != out->mesh.positions.size()) return ParseError("TEXCOORD and POSITION counts differ");
-  const std::vector<TextureSlot> slots = UsedTextureSlots(model.materials[static_cast<size_t>(p.material)]);
-  std::vector<size_t> first_slots;
-  JobOfEachSlot(slots, &first_slots);
-  for (size_t first : first_slots) {
-    const TextureSlot& slot = slots[first];
-    const tinygltf::Texture& texture = model.textures[static_cast<size_t>(slot.index)];
-    TextureJob job;
-    EQMESH_ASSIGN_OR_RETURN(job.encoded, ImageBytes(model, texture.source));
-    if (texture.sampler >= 0 && static_cast<size_t>(texture.sampler) < model.samplers.size()) {
-      job.wrap_s = model.samplers[static_cast<size_t>(texture.sampler)].wrapS;
-      job.wrap_t = model.samplers[static_cast<size_t>(texture.sampler)].wrapT;
-    }
-    job.uv_transform = slot.uv_transform;
-    out->textures.push_back(std::move(job));
-  }
-  return Status::Ok();
 }
 
 class PrimitiveCompressor {
@@ -109,8 +45,7 @@ class PrimitiveCompressor {
   bool textures_replaced() const { return textures_replaced_; }
 
  private:
-  Status Replace(tinygltf::Primitive* p, const CompressedGeometry& geometry);
-  void ReplaceTextures(tinygltf::Primitive* p, const CompressedGeometry& geometry);
+  Status Replace(tinygltf::Primitive* p, const AppearancePlan& plan, const CompressedGeometry& geometry);
   void RememberOldData(const tinygltf::Primitive& p);
   int NewAccessor() {
     model_->accessors.emplace_back();
@@ -139,7 +74,8 @@ void PrimitiveCompressor::RememberOldData(const tinygltf::Primitive& p) {
   }
 }
 
-Status PrimitiveCompressor::Replace(tinygltf::Primitive* p, const CompressedGeometry& geometry) {
+Status PrimitiveCompressor::Replace(tinygltf::Primitive* p, const AppearancePlan& plan,
+                                    const CompressedGeometry& geometry) {
   const uint64_t total = std::accumulate(geometry.chunk_lengths.begin(), geometry.chunk_lengths.end(), uint64_t{0});
   if (geometry.chunk_lengths.empty() || total != geometry.stream.size()) {
     return InternalError("chunk lengths do not add up to the stream size");
@@ -162,7 +98,8 @@ Status PrimitiveCompressor::Replace(tinygltf::Primitive* p, const CompressedGeom
   p->attributes = {{"POSITION", accessors.position}, {"NORMAL", accessors.normal}};
   if (textured) {
     p->attributes["TEXCOORD_0"] = accessors.texcoord;
-    ReplaceTextures(p, geometry);
+    ReplaceAppearance(plan, geometry, model_, p);
+    textures_replaced_ = true;
   }
   p->indices = accessors.indices;
   p->mode = TINYGLTF_MODE_TRIANGLES;
@@ -170,46 +107,20 @@ Status PrimitiveCompressor::Replace(tinygltf::Primitive* p, const CompressedGeom
   return Status::Ok();
 }
 
-// The primitive gets a copy of its material whose slots sample the new atlas
-// images (TEXCOORD_0, no transform), each a new texture with the old sampler.
-void PrimitiveCompressor::ReplaceTextures(tinygltf::Primitive* p, const CompressedGeometry& geometry) {
-  tinygltf::Material material = model_->materials[static_cast<size_t>(p->material)];
-  const std::vector<TextureSlot> slots = UsedTextureSlots(material);
-  std::vector<size_t> first_slots;
-  const std::vector<size_t> job = JobOfEachSlot(slots, &first_slots);
-  std::vector<int> new_texture(first_slots.size());
-  for (size_t k = 0; k < first_slots.size(); ++k) {
-    const tinygltf::Texture old_texture = model_->textures[static_cast<size_t>(slots[first_slots[k]].index)];
-    tinygltf::Image image = model_->images[static_cast<size_t>(old_texture.source)];
-    image.bufferView = AppendBufferView(model_, geometry.textures[k].data(), geometry.textures[k].size(), 0);
-    image.image.clear();
-    image.uri.clear();
-    model_->images.push_back(image);
-    tinygltf::Texture texture = old_texture;
-    texture.source = static_cast<int>(model_->images.size()) - 1;
-    model_->textures.push_back(texture);
-    new_texture[k] = static_cast<int>(model_->textures.size()) - 1;
-  }
-  for (size_t i = 0; i < slots.size(); ++i) RetargetSlot(slots[i], new_texture[job[i]], &material);
-  model_->materials.push_back(material);
-  p->material = static_cast<int>(model_->materials.size()) - 1;
-  textures_replaced_ = true;
-}
-
 PrimitiveOutcome PrimitiveCompressor::Compress(size_t mesh_index, size_t primitive_index) {
   tinygltf::Primitive& p = model_->meshes[mesh_index].primitives[primitive_index];
   PrimitiveOutcome out;
   out.mesh = static_cast<int>(mesh_index);
   out.primitive = static_cast<int>(primitive_index);
-  int tex_coord = -1;
-  out.reason = Disqualification(*model_, p, options_, &tex_coord);
+  AppearancePlan plan;
+  out.reason = Disqualification(*model_, p, options_, &plan);
   if (!out.reason.empty()) return out;
   PrimitiveGeometry input;
   Status read;
   auto mesh = ReadTrianglePrimitive(*model_, p);
   if (mesh.ok()) {
     input.mesh = std::move(mesh).value();
-    read = ReadTextures(*model_, p, tex_coord, &input);
+    read = ReadAppearance(*model_, p, plan, &input);
   } else {
     read = mesh.status();
   }
@@ -222,12 +133,12 @@ PrimitiveOutcome PrimitiveCompressor::Compress(size_t mesh_index, size_t primiti
   out.input_triangles = input.mesh.faces.size();
   const std::string label = "mesh " + std::to_string(mesh_index) + " primitive " + std::to_string(primitive_index);
   auto geometry = compressor_(input, label);
-  if (geometry.ok() && tex_coord >= 0 &&
+  if (geometry.ok() && plan.NeedsAtlas() &&
       (geometry->texcoords.empty() || geometry->textures.size() != input.textures.size())) {
     geometry = InternalError("the compressor returned no texture atlas for material " + std::to_string(p.material) +
                              "'s textures");
   }
-  Status status = geometry.ok() ? Replace(&p, *geometry) : geometry.status();
+  Status status = geometry.ok() ? Replace(&p, plan, *geometry) : geometry.status();
   if (!status.ok()) {
     out.reason = status.ToString();
     out.failure = status;

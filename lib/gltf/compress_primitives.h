@@ -19,9 +19,10 @@
 namespace eqmesh::gltf {
 
 // A texture the primitive's material samples, to be painted into the primitive's
-// new atlas.
+// new atlas, or (no image) the primitive's COLOR_0 alone as a new base colour.
 struct TextureJob {
-  std::vector<uint8_t> encoded;  // the image file (PNG or JPEG)
+  std::vector<uint8_t> encoded;  // the image file (PNG or JPEG); empty: white
+  bool times_vertex_colors = false;  // multiplied by the primitive's COLOR_0
   int wrap_s = 10497, wrap_t = 10497;
   // KHR_texture_transform as u' = m[0] u + m[1] v + m[2], v' = m[3] u + m[4] v + m[5].
   std::array<double, 6> uv_transform{1, 0, 0, 0, 1, 0};
@@ -32,7 +33,8 @@ struct PrimitiveGeometry {
   Mesh mesh;  // local space, vertices as stored
   // The TEXCOORD_n its material samples, per vertex; empty when it samples none.
   std::vector<std::array<double, 2>> texcoords;
-  std::vector<TextureJob> textures;
+  std::vector<std::array<double, 3>> colors;  // COLOR_0 (RGB) per vertex, when baked
+  std::vector<TextureJob> textures;          // empty: no atlas
 };
 
 struct CompressedGeometry {
@@ -40,7 +42,7 @@ struct CompressedGeometry {
   std::vector<uint64_t> chunk_lengths;  // levels + 1: header+base+kept+atlas, then each level
   Mesh decoded;                         // full-resolution decoded mesh (placeholders, fallback)
   std::vector<Vec3> normals;            // per decoded vertex; empty: the spec rule on `decoded`
-  std::vector<std::array<float, 2>> texcoords;  // TEXCOORD_0 of a textured primitive
+  std::vector<std::array<float, 2>> texcoords;  // TEXCOORD_0 when the primitive has an atlas
   std::vector<std::vector<uint8_t>> textures;   // per TextureJob: the atlas image, same format
   double psnr_db = 0;                   // decoded vs. input, when measured (else 0)
 };

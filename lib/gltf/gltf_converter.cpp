@@ -31,7 +31,7 @@ bool IsGltfFile(const std::string& path) {
 }
 
 StatusOr<CompressedGeometry> CompressWithEqmesh(const ConvertOptions& options, const PrimitiveGeometry& primitive) {
-  const bool textured = !primitive.texcoords.empty();
+  const bool textured = !primitive.textures.empty();
   const Mesh welded = textured ? WeldedByPosition(primitive.mesh) : Mesh();
   const Mesh& mesh = textured ? welded : primitive.mesh;
   RemeshReport remesh_report;

@@ -38,13 +38,6 @@ std::string DirectoryOf(const std::string& path) {
   return slash == std::string::npos ? "." : path.substr(0, slash);
 }
 
-std::string GuessMimeType(const std::vector<unsigned char>& bytes) {
-  static const unsigned char kPng[4] = {0x89, 'P', 'N', 'G'};
-  if (bytes.size() >= 4 && std::memcmp(bytes.data(), kPng, 4) == 0) return "image/png";
-  if (bytes.size() >= 2 && bytes[0] == 0xFF && bytes[1] == 0xD8) return "image/jpeg";
-  return "application/octet-stream";
-}
-
 // Images loaded from a URI (data: or file) move into the BIN chunk so the GLB
 // stands alone.
 void EmbedLoadedImages(tinygltf::Model* model) {
@@ -95,6 +88,14 @@ StatusOr<tinygltf::Model> ParseWithTinygltf(const std::vector<uint8_t>& bytes,
 }
 
 }  // namespace
+
+std::string GuessMimeType(const std::vector<unsigned char>& bytes) {
+  static const unsigned char kPng[4] = {0x89, 'P', 'N', 'G'};
+  if (bytes.size() >= 4 && std::memcmp(bytes.data(), kPng, 4) == 0) return "image/png";
+  if (bytes.size() >= 2 && bytes[0] == 0xFF && bytes[1] == 0xD8) return "image/jpeg";
+  return "application/octet-stream";
+}
+
 
 StatusOr<tinygltf::Model> ReadGltfModelFromBytes(const std::vector<uint8_t>& bytes,
                                                  const std::string& name_for_errors,

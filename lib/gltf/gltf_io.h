@@ -25,6 +25,9 @@ StatusOr<tinygltf::Model> ReadGltfModelFromBytes(const std::vector<uint8_t>& byt
 
 // A self-contained GLB: every buffer merged into the BIN chunk and every image with
 // loaded bytes embedded as a bufferView. The input model is not changed.
+// image/png or image/jpeg by the leading bytes (application/octet-stream else).
+std::string GuessMimeType(const std::vector<unsigned char>& bytes);
+
 StatusOr<std::vector<uint8_t>> WriteGlbToBytes(const tinygltf::Model& model);
 Status WriteGlb(const tinygltf::Model& model, const std::string& path);
 

@@ -1,6 +1,7 @@
 #include "gltf/textured_compression.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <map>
 
@@ -18,13 +19,16 @@ namespace {
 constexpr int kFallbackJpegQuality = 90;
 
 struct DecodedTexture {
+  bool has_image = false;  // false: COLOR_0 alone, painted as JPEG
   texture::Image image;
-  texture::ImageFormat format = texture::ImageFormat::kPng;
+  texture::ImageFormat format = texture::ImageFormat::kJpeg;
   int jpeg_quality = kFallbackJpegQuality;
 };
 
 StatusOr<DecodedTexture> DecodeJobImage(const TextureJob& job) {
   DecodedTexture out;
+  if (job.encoded.empty()) return out;
+  out.has_image = true;
   EQMESH_ASSIGN_OR_RETURN(out.format, texture::SniffImageFormat(job.encoded.data(), job.encoded.size()));
   EQMESH_ASSIGN_OR_RETURN(out.image, texture::DecodeImage(job.encoded.data(), job.encoded.size()));
   if (out.format == texture::ImageFormat::kJpeg) {
@@ -74,18 +78,28 @@ Mesh WeldedByPosition(const Mesh& mesh) {
   return out;
 }
 
+// Side of an atlas painted from vertex colours alone: about four texels per input
+// vertex once the cells' gutters and packing are paid (vertex colours vary
+// linearly across a face, so a few texels per face carry them).
+uint32_t VertexColorSide(size_t vertices) {
+  uint32_t side = 256;
+  while (side < 4096 && static_cast<double>(side) * side < 8.0 * static_cast<double>(vertices)) side *= 2;
+  return side;
+}
+
 Status AddAtlasAndTextures(const PrimitiveGeometry& input, uint32_t texture_size, CompressedGeometry* out) {
   std::vector<DecodedTexture> sources;
+  const uint32_t colour_side = texture_size > 0 ? texture_size : VertexColorSide(input.mesh.positions.size());
   uint32_t grid_w = texture_size, grid_h = texture_size;
   for (const TextureJob& job : input.textures) {
     EQMESH_ASSIGN_OR_RETURN(DecodedTexture t, DecodeJobImage(job));
     if (texture_size == 0) {
-      grid_w = std::max(grid_w, static_cast<uint32_t>(t.image.width));
-      grid_h = std::max(grid_h, static_cast<uint32_t>(t.image.height));
+      grid_w = std::max(grid_w, t.has_image ? static_cast<uint32_t>(t.image.width) : colour_side);
+      grid_h = std::max(grid_h, t.has_image ? static_cast<uint32_t>(t.image.height) : colour_side);
     }
     sources.push_back(std::move(t));
   }
-  if (grid_w == 0 || grid_h == 0) return InvalidArgument("a textured primitive without textures");
+  if (grid_w == 0 || grid_h == 0) return InvalidArgument("a primitive without textures or COLOR_0 needs no atlas");
   EQMESH_ASSIGN_OR_RETURN(const SemiRegularMesh decoded, DecodeSemiRegular(out->stream.data(), out->stream.size()));
   EQMESH_ASSIGN_OR_RETURN(const AtlasLayout atlas,
                           texture::BuildAtlas(decoded, {grid_w, grid_h, GutterFor(grid_w, grid_h)}));
@@ -94,14 +108,16 @@ Status AddAtlasAndTextures(const PrimitiveGeometry& input, uint32_t texture_size
   const texture::TexturedInput textured{&input.mesh, &input.texcoords};
   std::map<std::pair<uint32_t, uint32_t>, texture::TexelMap> maps;
   for (size_t k = 0; k < sources.size(); ++k) {
-    const uint32_t w = texture_size > 0 ? texture_size : static_cast<uint32_t>(sources[k].image.width);
-    const uint32_t h = texture_size > 0 ? texture_size : static_cast<uint32_t>(sources[k].image.height);
+    const bool own_size = texture_size == 0 && sources[k].has_image;
+    const uint32_t w = own_size ? static_cast<uint32_t>(sources[k].image.width) : (texture_size > 0 ? texture_size : colour_side);
+    const uint32_t h = own_size ? static_cast<uint32_t>(sources[k].image.height) : (texture_size > 0 ? texture_size : colour_side);
     const std::pair<uint32_t, uint32_t> size{w, h};
     if (maps.count(size) == 0) {
       EQMESH_ASSIGN_OR_RETURN(maps[size], texture::MapAtlasTexels(decoded, atlas, textured, w, h));
     }
     const TextureJob& job = input.textures[k];
-    const texture::SourceTexture source{&sources[k].image, job.wrap_s, job.wrap_t, job.uv_transform};
+    const texture::SourceTexture source{sources[k].has_image ? &sources[k].image : nullptr, job.wrap_s, job.wrap_t,
+                                        job.uv_transform, job.times_vertex_colors ? &input.colors : nullptr};
     const texture::Image painted = texture::PaintAtlas(maps.at(size), textured, source);
     EQMESH_ASSIGN_OR_RETURN(std::vector<uint8_t> bytes, Encode(painted, sources[k]));
     out->textures.push_back(std::move(bytes));

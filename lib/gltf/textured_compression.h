@@ -1,8 +1,9 @@
-// The texture half of compressing a textured primitive: an atlas laid out on the
-// decoded remesh joins the stream (TEXCOORD_0 then costs a few bytes per base
-// face), and every texture the material samples is painted into it from the input
-// (lib/texture/). Re-encoded in its input format: JPEG at the input's estimated
-// quality, PNG losslessly.
+// The texture half of compressing a textured (or vertex-coloured) primitive: an
+// atlas laid out on the decoded remesh joins the stream (TEXCOORD_0 then costs a
+// few bytes per base face), and every texture the material samples is painted into
+// it from the input (lib/texture/), COLOR_0 multiplied into the base colour.
+// Re-encoded in its input format: JPEG at the input's estimated quality, PNG
+// losslessly; a base colour made of COLOR_0 alone as JPEG.
 #pragma once
 
 #include <cstdint>

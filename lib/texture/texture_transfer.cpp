@@ -109,6 +109,35 @@ void SampleBilinear(const SourceTexture& s, double u, double v, float* out) {
 
 namespace {
 
+// Catmull-Rom weights of the four texels around fraction t (Keys 1981, a = -0.5).
+std::array<double, 4> CubicWeights(double t) {
+  const double t2 = t * t, t3 = t2 * t;
+  return {-0.5 * t3 + t2 - 0.5 * t, 1.5 * t3 - 2.5 * t2 + 1.0, -1.5 * t3 + 2.0 * t2 + 0.5 * t, 0.5 * t3 - 0.5 * t2};
+}
+
+}  // namespace
+
+void SampleBicubic(const SourceTexture& s, double u, double v, float* out) {
+  const Image& im = *s.image;
+  const double x = Wrap(u, s.wrap_s) * im.width - 0.5, y = Wrap(v, s.wrap_t) * im.height - 0.5;
+  const int xi = static_cast<int>(std::floor(x)), yi = static_cast<int>(std::floor(y));
+  const std::array<double, 4> wx = CubicWeights(x - xi), wy = CubicWeights(y - yi);
+  const int c = im.channels;
+  double sum[4] = {0, 0, 0, 0};
+  for (int dy = 0; dy < 4; ++dy) {
+    const size_t row = static_cast<size_t>(WrapIndex(yi + dy - 1, im.height, s.wrap_t));
+    for (int dx = 0; dx < 4; ++dx) {
+      const size_t col = static_cast<size_t>(WrapIndex(xi + dx - 1, im.width, s.wrap_s));
+      const double w = wx[static_cast<size_t>(dx)] * wy[static_cast<size_t>(dy)];
+      const uint8_t* px = &im.pixels[(row * static_cast<size_t>(im.width) + col) * static_cast<size_t>(c)];
+      for (int ch = 0; ch < c; ++ch) sum[ch] += w * px[ch];
+    }
+  }
+  for (int ch = 0; ch < c; ++ch) out[ch] = static_cast<float>(std::clamp(sum[ch], 0.0, 255.0));
+}
+
+namespace {
+
 // Each pass gives every empty texel with a filled 8-neighbour their mean: enough
 // passes to cross the gutters between cells.
 void Dilate(uint32_t width, uint32_t height, int channels, int passes, std::vector<float>* color,
@@ -195,22 +224,53 @@ StatusOr<TexelMap> MapAtlasTexels(const SemiRegularMesh& decoded, const AtlasLay
   return map;
 }
 
-Image PaintAtlas(const TexelMap& map, const TexturedInput& input, const SourceTexture& source) {
-  const int channels = source.image->channels;
-  const size_t n = map.texels.size();
-  std::vector<float> color(n * static_cast<size_t>(channels), 0.0f);
-  std::vector<bool> filled(n, false);
-  const auto& m = source.uv_transform;
-  for (size_t i = 0; i < n; ++i) {
-    const TexelSource& t = map.texels[i];
-    if (t.face == kNoTexelFace) continue;
-    const Face& f = input.mesh->faces[t.face];
+namespace {
+
+// Channels of the painted atlas: vertex colours make a gray image colour.
+int PaintedChannels(const SourceTexture& s) {
+  if (s.image == nullptr) return 3;
+  if (s.vertex_colors == nullptr || s.image->channels >= 3) return s.image->channels;
+  return s.image->channels + 2;  // gray -> RGB, gray + alpha -> RGBA
+}
+
+void PaintTexel(const TexelSource& t, const TexturedInput& input, const SourceTexture& s, int channels, float* out) {
+  const Face& f = input.mesh->faces[t.face];
+  float sample[4] = {255, 255, 255, 255};
+  int sampled = 3;
+  if (s.image != nullptr) {
     double u = 0, v = 0;
     for (size_t k = 0; k < 3; ++k) {
       u += t.barycentric[k] * (*input.texcoords)[f[k]][0];
       v += t.barycentric[k] * (*input.texcoords)[f[k]][1];
     }
-    SampleBilinear(source, m[0] * u + m[1] * v + m[2], m[3] * u + m[4] * v + m[5], &color[i * channels]);
+    const auto& m = s.uv_transform;
+    SampleBicubic(s, m[0] * u + m[1] * v + m[2], m[3] * u + m[4] * v + m[5], sample);
+    sampled = s.image->channels;
+  }
+  if (channels == sampled) {
+    std::copy(sample, sample + channels, out);
+  } else {  // gray (+ alpha) widened
+    std::fill(out, out + 3, sample[0]);
+    if (channels == 4) out[3] = sample[1];
+  }
+  if (s.vertex_colors == nullptr) return;
+  for (size_t c = 0; c < 3; ++c) {
+    double vc = 0;
+    for (size_t k = 0; k < 3; ++k) vc += t.barycentric[k] * (*s.vertex_colors)[f[k]][c];
+    out[c] = static_cast<float>(out[c] * vc);
+  }
+}
+
+}  // namespace
+
+Image PaintAtlas(const TexelMap& map, const TexturedInput& input, const SourceTexture& source) {
+  const int channels = PaintedChannels(source);
+  const size_t n = map.texels.size();
+  std::vector<float> color(n * static_cast<size_t>(channels), 0.0f);
+  std::vector<bool> filled(n, false);
+  for (size_t i = 0; i < n; ++i) {
+    if (map.texels[i].face == kNoTexelFace) continue;
+    PaintTexel(map.texels[i], input, source, channels, &color[i * static_cast<size_t>(channels)]);
     filled[i] = true;
   }
   Dilate(map.width, map.height, channels, map.dilation_passes, &color, &filled);

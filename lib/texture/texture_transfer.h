@@ -45,11 +45,14 @@ struct TexturedInput {
 
 // One input texture and how the material samples it.
 struct SourceTexture {
-  const Image* image = nullptr;
+  const Image* image = nullptr;  // null: white (a base colour made of vertex colours alone)
   int wrap_s = 10497, wrap_t = 10497;  // glTF sampler wrap modes (REPEAT)
   // KHR_texture_transform as an affine map: u' = m[0] u + m[1] v + m[2],
   // v' = m[3] u + m[4] v + m[5].
   std::array<double, 6> uv_transform{1, 0, 0, 0, 1, 0};
+  // Per input vertex RGB in [0, 1] that multiplies the texture (COLOR_0 baked
+  // into the base colour); null: none.
+  const std::vector<std::array<double, 3>>* vertex_colors = nullptr;
 };
 
 // Bilinear sample of the texture at (u, v) after the sampler's wrap modes (the
@@ -57,12 +60,18 @@ struct SourceTexture {
 // out receives image->channels values in [0, 255].
 void SampleBilinear(const SourceTexture& source, double u, double v, float* out);
 
+// Catmull-Rom bicubic sample (same conventions, clamped to [0, 255]): sharper than
+// bilinear, so an atlas painted with it loses less of the input's detail to the
+// second resampling a renderer's bilinear filter adds.
+void SampleBicubic(const SourceTexture& source, double u, double v, float* out);
+
 // Texel correspondences of `decoded` (full resolution) laid out by `atlas`, for an
 // image of width x height (the atlas grid scaled to it).
 StatusOr<TexelMap> MapAtlasTexels(const SemiRegularMesh& decoded, const AtlasLayout& atlas,
                                   const TexturedInput& input, uint32_t width, uint32_t height);
 
-// The atlas image of `source` (its channel count), gutters dilated.
+// The atlas image of `source`, gutters dilated: the image's channel count, gray
+// widened to RGB when vertex colours multiply it, RGB without an image.
 Image PaintAtlas(const TexelMap& map, const TexturedInput& input, const SourceTexture& source);
 
 }  // namespace eqmesh::texture

@@ -6,10 +6,12 @@
 #include <algorithm>
 
 #include "gltf/accessor_io.h"
+#include "gltf/buffer_layout.h"
 #include "gltf/gltf_converter.h"
 #include "gltf/gltf_io.h"
 #include "gltf/gltf_loader.h"
 #include "gltf/material_textures.h"
+#include "gltf/surface_color.h"
 #include "gltf/textured_compression.h"
 #include "gltf_test_support.h"
 #include "mesh/file_bytes.h"
@@ -102,6 +104,52 @@ TEST(GltfTextured, ConversionIsDeterministicAndValidatorClean) {
     EXPECT_EQ(counts->errors, 0) << path;
     EXPECT_EQ(counts->warnings, 0) << path;
   }
+}
+
+// A vertex-coloured sphere: COLOR_0 = a smooth RGB ramp over the position, no
+// material (glTF's default one).
+tinygltf::Model VertexColouredSphere() {
+  const Mesh sphere = testing::MakeIcosphere(4);
+  auto model = gltf::ModelFromMesh(sphere);
+  EXPECT_TRUE(model.ok());
+  std::vector<float> colors;
+  for (const Vec3& p : sphere.positions) {
+    for (double c : {0.5 + 0.4 * p.x(), 0.5 + 0.4 * p.y(), 0.5 + 0.4 * p.z()}) colors.push_back(static_cast<float>(c));
+  }
+  tinygltf::Accessor accessor;
+  accessor.bufferView = gltf::AppendBufferView(&*model, reinterpret_cast<const uint8_t*>(colors.data()),
+                                               colors.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
+  accessor.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+  accessor.type = TINYGLTF_TYPE_VEC3;
+  accessor.count = sphere.positions.size();
+  model->accessors.push_back(accessor);
+  model->meshes[0].primitives[0].attributes["COLOR_0"] = static_cast<int>(model->accessors.size()) - 1;
+  return *model;
+}
+
+TEST(GltfTextured, VertexColoursAreBakedIntoABaseColourTexture) {
+  const tinygltf::Model original = VertexColouredSphere();
+  tinygltf::Model model = original;
+  gltf::ConvertOptions options;
+  options.remesh.levels = 2;
+  options.codec.lambda = 1.0;
+  auto report = gltf::ConvertModel(&model, options);
+  ASSERT_TRUE(report.ok()) << report.status().ToString();
+  ASSERT_EQ(report->compressed, 1u) << report->primitives[0].reason;
+  const tinygltf::Primitive& p = model.meshes[0].primitives[0];
+  EXPECT_EQ(p.attributes.count("COLOR_0"), 0u);
+  ASSERT_GE(p.material, 0);
+  const tinygltf::Material& material = model.materials[static_cast<size_t>(p.material)];
+  EXPECT_GE(material.pbrMetallicRoughness.baseColorTexture.index, 0);
+  EXPECT_EQ(material.pbrMetallicRoughness.metallicFactor, 1.0);  // glTF's default material otherwise
+  ASSERT_TRUE(gltf::DecodeCompressedPrimitives(&model).ok());
+  auto a = gltf::FlattenWithColor(original);
+  auto b = gltf::FlattenWithColor(model);
+  ASSERT_TRUE(a.ok() && b.ok());
+  EXPECT_TRUE(a->varies && b->varies);
+  auto d = CompareColors(a->mesh, a->color, b->mesh, b->color, {100000});
+  ASSERT_TRUE(d.ok()) << d.status().ToString();
+  EXPECT_GT(d->psnr_db, 35.0) << "colour rms " << d->rms;
 }
 
 }  // namespace
