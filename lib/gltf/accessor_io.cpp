@@ -177,6 +177,15 @@ StatusOr<std::vector<std::array<double, 2>>> ReadTexcoordAccessor(const tinygltf
   return out;
 }
 
+StatusOr<std::vector<std::array<double, 4>>> ReadTangentAccessor(const tinygltf::Model& model, int accessor) {
+  const tinygltf::Accessor* a = accessor >= 0 && static_cast<size_t>(accessor) < model.accessors.size()
+                                    ? &model.accessors[static_cast<size_t>(accessor)] : nullptr;
+  if (a != nullptr && (a->type != TINYGLTF_TYPE_VEC4 || a->componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)) {
+    return UnsupportedFeature("TANGENT is not a float VEC4 accessor");
+  }
+  return ReadNormalizedVectors(model, accessor, "TANGENT", 4);
+}
+
 StatusOr<std::vector<std::array<double, 3>>> ReadColorAccessor(const tinygltf::Model& model, int accessor,
                                                                 const std::string& what) {
   EQMESH_ASSIGN_OR_RETURN(const auto values, ReadNormalizedVectors(model, accessor, what, 3));

@@ -23,6 +23,9 @@ StatusOr<std::vector<Vec3>> ReadVec3Accessor(const tinygltf::Model& model, int a
 StatusOr<std::vector<std::array<double, 2>>> ReadTexcoordAccessor(const tinygltf::Model& model, int accessor,
                                                                    const std::string& what);
 
+// TANGENT data (float VEC4: xyz and the handedness w), no sparse.
+StatusOr<std::vector<std::array<double, 4>>> ReadTangentAccessor(const tinygltf::Model& model, int accessor);
+
 // COLOR data (VEC3 or VEC4; RGB returned): float, or normalized unsigned byte /
 // short, no sparse.
 StatusOr<std::vector<std::array<double, 3>>> ReadColorAccessor(const tinygltf::Model& model, int accessor,

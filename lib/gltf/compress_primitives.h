@@ -23,6 +23,8 @@ namespace eqmesh::gltf {
 struct TextureJob {
   std::vector<uint8_t> encoded;  // the image file (PNG or JPEG); empty: white
   bool times_vertex_colors = false;  // multiplied by the primitive's COLOR_0
+  bool normal_map = false;           // tangent-space normals: re-expressed, not copied
+  double normal_scale = 1.0;         // normalTexture.scale, baked into the new map
   int wrap_s = 10497, wrap_t = 10497;
   // KHR_texture_transform as u' = m[0] u + m[1] v + m[2], v' = m[3] u + m[4] v + m[5].
   std::array<double, 6> uv_transform{1, 0, 0, 0, 1, 0};
@@ -34,6 +36,10 @@ struct PrimitiveGeometry {
   // The TEXCOORD_n its material samples, per vertex; empty when it samples none.
   std::vector<std::array<double, 2>> texcoords;
   std::vector<std::array<double, 3>> colors;  // COLOR_0 (RGB) per vertex, when baked
+  // NORMAL and TANGENT as stored, when a normal map needs the input's frames
+  // (empty: not given, computed).
+  std::vector<Vec3> normals;
+  std::vector<std::array<double, 4>> tangents;
   std::vector<TextureJob> textures;          // empty: no atlas
 };
 

@@ -1,5 +1,7 @@
 #include "gltf/primitive_appearance.h"
 
+#include <algorithm>
+
 #include "gltf/accessor_io.h"
 #include "gltf/buffer_layout.h"
 #include "gltf/gltf_io.h"
@@ -66,14 +68,34 @@ std::string VertexColorDisqualification(const tinygltf::Model& model, const tiny
   return "";
 }
 
-Status ReadJob(const tinygltf::Model& model, const TextureSlot& slot, TextureJob* job) {
+Status ReadJob(const tinygltf::Model& model, const tinygltf::Material& material, const TextureSlot& slot,
+               TextureJob* job) {
   const tinygltf::Texture& texture = model.textures[static_cast<size_t>(slot.index)];
+  job->normal_map = slot.IsNormalMap();
+  if (job->normal_map) job->normal_scale = material.normalTexture.scale;
   EQMESH_ASSIGN_OR_RETURN(job->encoded, ImageBytes(model, texture.source));
   if (texture.sampler >= 0 && static_cast<size_t>(texture.sampler) < model.samplers.size()) {
     job->wrap_s = model.samplers[static_cast<size_t>(texture.sampler)].wrapS;
     job->wrap_t = model.samplers[static_cast<size_t>(texture.sampler)].wrapT;
   }
   job->uv_transform = slot.uv_transform;
+  return Status::Ok();
+}
+
+// NORMAL and TANGENT as given (a normal map was authored against them).
+Status ReadFrames(const tinygltf::Model& model, const tinygltf::Primitive& p, PrimitiveGeometry* out) {
+  const size_t vertices = out->mesh.positions.size();
+  const auto normal = p.attributes.find("NORMAL");
+  if (normal != p.attributes.end()) {
+    EQMESH_ASSIGN_OR_RETURN(out->normals, ReadVec3Accessor(model, normal->second, "NORMAL"));
+    if (out->normals.size() != vertices) return ParseError("NORMAL and POSITION counts differ");
+    for (Vec3& n : out->normals) n = n.squaredNorm() > 0 ? n.normalized() : Vec3::UnitZ();
+  }
+  const auto tangent = p.attributes.find("TANGENT");
+  if (tangent != p.attributes.end()) {
+    EQMESH_ASSIGN_OR_RETURN(out->tangents, ReadTangentAccessor(model, tangent->second));
+    if (out->tangents.size() != vertices) return ParseError("TANGENT and POSITION counts differ");
+  }
   return Status::Ok();
 }
 
@@ -103,7 +125,9 @@ std::string AppearanceDisqualification(const tinygltf::Model& model, const tinyg
   plan->vertex_colors = p.attributes.count("COLOR_0") > 0;
   const std::string m = "material " + std::to_string(p.material);
   for (const TextureSlot& slot : UsedTextureSlots(MaterialOf(model, p))) {
-    if (slot.IsNormalMap()) return m + " has a normal map (" + slot.Name() + "), which eqmesh does not re-express yet";
+    if (slot.IsNormalMap() && !slot.extension.empty()) {
+      return m + " has a normal map in " + slot.Name() + ", which eqmesh does not re-express yet";
+    }
     if (slot.index < 0 || static_cast<size_t>(slot.index) >= model.textures.size()) return m + " names a missing texture";
     const tinygltf::Texture& texture = model.textures[static_cast<size_t>(slot.index)];
     if (!texture.extensions.empty() || texture.source < 0 ||
@@ -121,7 +145,7 @@ std::string AppearanceDisqualification(const tinygltf::Model& model, const tinyg
 
 bool CarriedByAtlas(const AppearancePlan& plan, const std::string& semantic) {
   return (plan.tex_coord >= 0 && semantic == "TEXCOORD_" + std::to_string(plan.tex_coord)) ||
-         (plan.vertex_colors && semantic == "COLOR_0");
+         (plan.vertex_colors && semantic == "COLOR_0") || (plan.tex_coord >= 0 && semantic == "TANGENT");
 }
 
 Status ReadAppearance(const tinygltf::Model& model, const tinygltf::Primitive& p, const AppearancePlan& plan,
@@ -137,11 +161,15 @@ Status ReadAppearance(const tinygltf::Model& model, const tinygltf::Primitive& p
     if (out->colors.size() != vertices) return ParseError("COLOR_0 and POSITION counts differ");
   }
   const std::vector<TextureSlot> slots = UsedTextureSlots(MaterialOf(model, p));
+  const bool normal_map = std::any_of(slots.begin(), slots.end(), [](const TextureSlot& s) { return s.IsNormalMap(); });
+  if (normal_map) EQMESH_RETURN_IF_ERROR(ReadFrames(model, p, out));
   std::vector<size_t> job_of_slot;
   for (const Job& planned : PlanJobs(slots, plan, &job_of_slot)) {
     TextureJob job;
     job.times_vertex_colors = planned.base_color && plan.vertex_colors;
-    if (planned.first_slot != kNoSlot) EQMESH_RETURN_IF_ERROR(ReadJob(model, slots[planned.first_slot], &job));
+    if (planned.first_slot != kNoSlot) {
+      EQMESH_RETURN_IF_ERROR(ReadJob(model, MaterialOf(model, p), slots[planned.first_slot], &job));
+    }
     out->textures.push_back(std::move(job));
   }
   return Status::Ok();
@@ -162,6 +190,7 @@ void ReplaceAppearance(const AppearancePlan& plan, const CompressedGeometry& geo
     new_texture[k] = AddTexture(geometry.textures[k], jobs[k].first_slot != kNoSlot ? &like : nullptr, model);
   }
   for (size_t i = 0; i < slots.size(); ++i) RetargetSlot(slots[i], new_texture[job_of_slot[i]], &material);
+  if (material.normalTexture.index >= 0) material.normalTexture.scale = 1.0;  // baked into the new map
   if (!jobs.empty() && jobs.back().first_slot == kNoSlot) {
     material.pbrMetallicRoughness.baseColorTexture.index = new_texture.back();
     material.pbrMetallicRoughness.baseColorTexture.texCoord = 0;

@@ -3,7 +3,9 @@
 // the compressor is handed to paint them (compress_primitives.h TextureJob), and
 // the material the compressed primitive then samples. COLOR_0 does not survive as
 // a vertex attribute (the remesh has other vertices): it is baked into the base
-// colour, multiplied into the base colour texture or as a new one.
+// colour, multiplied into the base colour texture or as a new one. A normal map is
+// re-expressed in the decoded surface's tangent frames (TANGENT then goes: engines
+// derive the frames, as for any primitive without it).
 #pragma once
 
 #include <string>
@@ -22,16 +24,18 @@ struct AppearancePlan {
 };
 
 // Empty when the primitive's appearance can follow it into an atlas, else why not
-// (a normal map, two TEXCOORD sets, an image that is not PNG or JPEG, COLOR_0 alpha
-// under blending); `plan` says what the atlas must carry.
+// (a normal map inside a material extension, two TEXCOORD sets, an image that is
+// not PNG or JPEG, COLOR_0 alpha under blending); `plan` says what the atlas must
+// carry.
 std::string AppearanceDisqualification(const tinygltf::Model& model, const tinygltf::Primitive& primitive,
                                        AppearancePlan* plan);
 
 // The attributes the plan carries into the atlas (which the primitive may lose).
 bool CarriedByAtlas(const AppearancePlan& plan, const std::string& semantic);
 
-// Fills out->texcoords, out->colors and out->textures (one job per distinct texture
-// the material samples, plus one for COLOR_0 when no base colour texture exists).
+// Fills out->texcoords, out->colors, out->textures (one job per distinct texture
+// the material samples, plus one for COLOR_0 when no base colour texture exists)
+// and, for a normal map, out->normals and out->tangents as given.
 Status ReadAppearance(const tinygltf::Model& model, const tinygltf::Primitive& primitive, const AppearancePlan& plan,
                       PrimitiveGeometry* out);
 

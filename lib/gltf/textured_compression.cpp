@@ -9,7 +9,9 @@
 #include "coding/decoder.h"
 #include "gltf/stream_decoder.h"
 #include "texture/atlas_builder.h"
+#include "gltf/accessor_io.h"
 #include "texture/image_codec.h"
+#include "texture/tangent_frames.h"
 #include "texture/texture_transfer.h"
 
 namespace eqmesh::gltf {
@@ -48,6 +50,44 @@ StatusOr<std::vector<uint8_t>> Encode(const texture::Image& image, const Decoded
   return texture::EncodePng(image);
 }
 
+// The frames the input's normal map was authored against: TANGENT and NORMAL as
+// given, else derived (normals on the welded surface, so UV seams do not crease
+// them).
+struct InputFrames {
+  std::vector<Vec3> normals;
+  std::vector<texture::Vec4> tangents;
+};
+
+InputFrames FramesOfInput(const PrimitiveGeometry& input) {
+  InputFrames f;
+  f.normals = input.normals;
+  if (f.normals.empty()) {
+    std::vector<uint32_t> welded_index;
+    const std::vector<Vec3> welded = UnitVertexNormals(WeldedByPosition(input.mesh, &welded_index));
+    for (uint32_t w : welded_index) f.normals.push_back(welded[w]);
+  }
+  if (input.tangents.empty()) {
+    f.tangents = texture::VertexTangents(input.mesh, input.texcoords, f.normals);
+  } else {
+    for (const auto& t : input.tangents) f.tangents.emplace_back(t[0], t[1], t[2], t[3] < 0 ? -1.0 : 1.0);
+  }
+  return f;
+}
+
+struct DecodedFrames {
+  std::vector<Vec3> normals;
+  std::vector<texture::Vec4> tangents;
+};
+
+DecodedFrames FramesOfDecoded(const CompressedGeometry& out) {
+  DecodedFrames f;
+  f.normals = out.normals.empty() ? UnitVertexNormals(out.decoded) : out.normals;
+  std::vector<std::array<double, 2>> uv;
+  for (const auto& t : out.texcoords) uv.push_back({t[0], t[1]});
+  f.tangents = texture::VertexTangents(out.decoded, uv, f.normals);
+  return f;
+}
+
 Status UseTexturedDecode(CompressedGeometry* out) {
   EQMESH_ASSIGN_OR_RETURN(out->chunk_lengths, EqmeshStreamLayout()(out->stream.data(), out->stream.size()));
   EQMESH_ASSIGN_OR_RETURN(DecodedStream decoded, EqmeshStreamDecoder()(out->stream.data(), out->stream.size(), -1));
@@ -59,9 +99,11 @@ Status UseTexturedDecode(CompressedGeometry* out) {
 
 }  // namespace
 
-Mesh WeldedByPosition(const Mesh& mesh) {
+Mesh WeldedByPosition(const Mesh& mesh, std::vector<uint32_t>* welded_index) {
   std::map<std::array<uint64_t, 3>, uint32_t> first;
-  std::vector<uint32_t> remap(mesh.positions.size());
+  std::vector<uint32_t> local;
+  std::vector<uint32_t>& remap = welded_index != nullptr ? *welded_index : local;
+  remap.assign(mesh.positions.size(), 0);
   Mesh out;
   for (size_t v = 0; v < mesh.positions.size(); ++v) {
     std::array<uint64_t, 3> key{};
@@ -107,6 +149,10 @@ Status AddAtlasAndTextures(const PrimitiveGeometry& input, uint32_t texture_size
   EQMESH_RETURN_IF_ERROR(UseTexturedDecode(out));
   const texture::TexturedInput textured{&input.mesh, &input.texcoords};
   std::map<std::pair<uint32_t, uint32_t>, texture::TexelMap> maps;
+  const bool any_normal_map = std::any_of(input.textures.begin(), input.textures.end(),
+                                          [](const TextureJob& j) { return j.normal_map; });
+  const InputFrames from = any_normal_map ? FramesOfInput(input) : InputFrames();
+  const DecodedFrames to = any_normal_map ? FramesOfDecoded(*out) : DecodedFrames();
   for (size_t k = 0; k < sources.size(); ++k) {
     const bool own_size = texture_size == 0 && sources[k].has_image;
     const uint32_t w = own_size ? static_cast<uint32_t>(sources[k].image.width) : (texture_size > 0 ? texture_size : colour_side);
@@ -116,8 +162,11 @@ Status AddAtlasAndTextures(const PrimitiveGeometry& input, uint32_t texture_size
       EQMESH_ASSIGN_OR_RETURN(maps[size], texture::MapAtlasTexels(decoded, atlas, textured, w, h));
     }
     const TextureJob& job = input.textures[k];
+    const texture::NormalMapFrames frames{&from.tangents, &from.normals, &out->decoded,
+                                          &to.tangents,   &to.normals,   job.normal_scale};
     const texture::SourceTexture source{sources[k].has_image ? &sources[k].image : nullptr, job.wrap_s, job.wrap_t,
-                                        job.uv_transform, job.times_vertex_colors ? &input.colors : nullptr};
+                                        job.uv_transform, job.times_vertex_colors ? &input.colors : nullptr,
+                                        job.normal_map ? &frames : nullptr};
     const texture::Image painted = texture::PaintAtlas(maps.at(size), textured, source);
     EQMESH_ASSIGN_OR_RETURN(std::vector<uint8_t> bytes, Encode(painted, sources[k]));
     out->textures.push_back(std::move(bytes));

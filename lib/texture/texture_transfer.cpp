@@ -65,6 +65,8 @@ struct Rasterizer {
     out.face = hit.face;
     out.barycentric = {static_cast<float>(hit.barycentric[0]), static_cast<float>(hit.barycentric[1]),
                        static_cast<float>(hit.barycentric[2])};
+    out.decoded_face = static_cast<uint32_t>(f);
+    out.decoded_barycentric = {static_cast<float>(b[0]), static_cast<float>(b[1]), static_cast<float>(b[2])};
   }
 };
 
@@ -233,6 +235,20 @@ int PaintedChannels(const SourceTexture& s) {
   return s.image->channels + 2;  // gray -> RGB, gray + alpha -> RGBA
 }
 
+// The sampled vector (texel values 0..255 -> -1..1, xy times the scale) moved from
+// the input's tangent frame to the decoded surface's, back to texel values.
+void ReexpressNormal(const TexelSource& t, const TexturedInput& input, const NormalMapFrames& f, float* rgb) {
+  Vec3 v(rgb[0] / 127.5 - 1.0, rgb[1] / 127.5 - 1.0, rgb[2] / 127.5 - 1.0);
+  v.x() *= f.scale;
+  v.y() *= f.scale;
+  const Frame from = FrameAt(*input.mesh, *f.input_tangents, *f.input_normals, t.face, t.barycentric);
+  const Frame to = FrameAt(*f.decoded, *f.decoded_tangents, *f.decoded_normals, t.decoded_face, t.decoded_barycentric);
+  Vec3 object = v.x() * from.t + v.y() * from.b + v.z() * from.n;
+  object = object.squaredNorm() > 0 ? object.normalized() : from.n;
+  const Vec3 local(object.dot(to.t), object.dot(to.b), object.dot(to.n));
+  for (int c = 0; c < 3; ++c) rgb[c] = static_cast<float>((local[c] + 1.0) * 127.5);
+}
+
 void PaintTexel(const TexelSource& t, const TexturedInput& input, const SourceTexture& s, int channels, float* out) {
   const Face& f = input.mesh->faces[t.face];
   float sample[4] = {255, 255, 255, 255};
@@ -247,6 +263,7 @@ void PaintTexel(const TexelSource& t, const TexturedInput& input, const SourceTe
     SampleBicubic(s, m[0] * u + m[1] * v + m[2], m[3] * u + m[4] * v + m[5], sample);
     sampled = s.image->channels;
   }
+  if (s.normal_map != nullptr && sampled >= 3) ReexpressNormal(t, input, *s.normal_map, sample);
   if (channels == sampled) {
     std::copy(sample, sample + channels, out);
   } else {  // gray (+ alpha) widened

@@ -20,6 +20,7 @@
 #include "core/status.h"
 #include "mesh/semi_regular.h"
 #include "texture/image_codec.h"
+#include "texture/tangent_frames.h"
 
 namespace eqmesh::texture {
 
@@ -29,6 +30,10 @@ inline constexpr uint32_t kNoTexelFace = 0xFFFFFFFFu;
 struct TexelSource {
   uint32_t face = kNoTexelFace;
   std::array<float, 3> barycentric{};
+  // Where the texel lies on the decoded surface: a face of its finest level
+  // (ExtractLevel's numbering, kept faces last) and barycentric coordinates.
+  uint32_t decoded_face = 0;
+  std::array<float, 3> decoded_barycentric{};
 };
 struct TexelMap {
   uint32_t width = 0, height = 0;
@@ -43,6 +48,18 @@ struct TexturedInput {
   const std::vector<std::array<double, 2>>* texcoords = nullptr;
 };
 
+// What re-expresses a tangent-space normal map: the input's frames (per input
+// vertex) and the decoded surface's (per vertex of its finest level as the loader
+// writes it: split at the atlas seams, faces in ExtractLevel's order).
+struct NormalMapFrames {
+  const std::vector<Vec4>* input_tangents = nullptr;
+  const std::vector<Vec3>* input_normals = nullptr;
+  const Mesh* decoded = nullptr;
+  const std::vector<Vec4>* decoded_tangents = nullptr;
+  const std::vector<Vec3>* decoded_normals = nullptr;
+  double scale = 1.0;  // the slot's normalTexture.scale, baked into the new map
+};
+
 // One input texture and how the material samples it.
 struct SourceTexture {
   const Image* image = nullptr;  // null: white (a base colour made of vertex colours alone)
@@ -53,6 +70,9 @@ struct SourceTexture {
   // Per input vertex RGB in [0, 1] that multiplies the texture (COLOR_0 baked
   // into the base colour); null: none.
   const std::vector<std::array<double, 3>>* vertex_colors = nullptr;
+  // A tangent-space normal map: each texel's vector goes from the input's frame
+  // to the decoded surface's; null: colours, painted as they are.
+  const NormalMapFrames* normal_map = nullptr;
 };
 
 // Bilinear sample of the texture at (u, v) after the sampler's wrap modes (the

@@ -11,6 +11,7 @@
 #include "coding/decoder.h"
 #include "coding/stream_header.h"
 #include "texture/atlas_builder.h"
+#include "texture/tangent_frames.h"
 #include "texture/texture_transfer.h"
 
 namespace eqmesh {
@@ -193,6 +194,75 @@ TEST(TextureTransfer, PaintedAtlasReproducesTheInputColourAtEveryVertex) {
   }
   EXPECT_LT(sum / static_cast<double>(split.source_vertex.size()), 2.0);
   EXPECT_LT(worst, 6.0);
+}
+
+// A tangent-space normal map moves to the atlas: the object-space normal it gives
+// with the decoded surface's frames matches the one the input map gives with the
+// input's frames (where the input's planar projection is well conditioned).
+TEST(TextureTransfer, NormalMapKeepsItsObjectSpaceNormals) {
+  const Fixture f = MakeFixture();
+  const Mesh input = ExtractLevel(f.decoded, f.decoded.hierarchy.levels());
+  std::vector<std::array<double, 2>> input_uv;
+  for (const Vec3& p : input.positions) input_uv.push_back({0.5 + 0.4 * p.x(), 0.5 + 0.4 * p.y()});
+  std::vector<Vec3> input_normals = VertexNormals(input);
+  for (Vec3& n : input_normals) n.normalize();
+  const std::vector<texture::Vec4> input_tangents = texture::VertexTangents(input, input_uv, input_normals);
+  const Vec3 tilt = Vec3(0.3, -0.2, 0.9).normalized();  // the map's constant tangent-space normal
+  texture::Image map;
+  map.width = map.height = 64;
+  map.channels = 3;
+  for (int i = 0; i < 64 * 64; ++i) {
+    for (int c = 0; c < 3; ++c) map.pixels.push_back(static_cast<uint8_t>(std::lround((tilt[c] + 1) * 127.5)));
+  }
+  // The decoded side as the loader writes it: split at the atlas seams.
+  const std::vector<FaceTexCoords> corners = FaceCornerTexCoords(f.atlas, AtlasFaces(f.decoded));
+  const SeamSplitMesh split = SplitLevelAtSeams(f.decoded, f.decoded.hierarchy.levels(), corners);
+  Mesh decoded;
+  for (uint32_t v : split.source_vertex) decoded.positions.push_back(input.positions[v]);
+  decoded.faces = split.faces;
+  std::vector<Vec3> decoded_normals;
+  for (uint32_t v : split.source_vertex) decoded_normals.push_back(input_normals[v]);
+  std::vector<std::array<double, 2>> decoded_uv;
+  for (const auto& t : split.texcoords) decoded_uv.push_back({t[0], t[1]});
+  const std::vector<texture::Vec4> decoded_tangents = texture::VertexTangents(decoded, decoded_uv, decoded_normals);
+
+  const texture::TexturedInput textured{&input, &input_uv};
+  auto texels = texture::MapAtlasTexels(f.decoded, f.atlas, textured, 256, 256);
+  ASSERT_TRUE(texels.ok());
+  const texture::NormalMapFrames frames{&input_tangents, &input_normals, &decoded, &decoded_tangents, &decoded_normals, 1.0};
+  texture::SourceTexture source;
+  source.image = &map;
+  source.normal_map = &frames;
+  const texture::Image painted = texture::PaintAtlas(*texels, textured, source);
+
+  double worst = 0, sum = 0;
+  int checked = 0;
+  for (size_t t = 0; t < decoded.faces.size(); ++t) {
+    const Vec3 centre = (decoded.positions[decoded.faces[t][0]] + decoded.positions[decoded.faces[t][1]] +
+                         decoded.positions[decoded.faces[t][2]]) / 3.0;
+    if (centre.z() < 0.5 || centre.norm() > 1.5) continue;  // the upper cap: planar UVs well conditioned there
+    const std::array<float, 3> third{1.0f / 3, 1.0f / 3, 1.0f / 3};
+    const texture::Frame in = texture::FrameAt(input, input_tangents, input_normals, static_cast<uint32_t>(t), third);
+    const Vec3 expected = (tilt.x() * in.t + tilt.y() * in.b + tilt.z() * in.n).normalized();
+    double u = 0, v = 0;
+    for (uint32_t k : decoded.faces[t]) {
+      u += split.texcoords[k][0] / 3.0;
+      v += split.texcoords[k][1] / 3.0;
+    }
+    const size_t x = static_cast<size_t>(std::clamp(static_cast<int>(u * 256), 0, 255));
+    const size_t y = static_cast<size_t>(std::clamp(static_cast<int>(v * 256), 0, 255));
+    const uint8_t* px = &painted.pixels[(y * 256 + x) * 3];
+    const Vec3 local(px[0] / 127.5 - 1, px[1] / 127.5 - 1, px[2] / 127.5 - 1);
+    const texture::Frame out = texture::FrameAt(decoded, decoded_tangents, decoded_normals, static_cast<uint32_t>(t), third);
+    const Vec3 got = (local.x() * out.t + local.y() * out.b + local.z() * out.n).normalized();
+    const double degrees = std::acos(std::clamp(got.dot(expected), -1.0, 1.0)) * 180.0 / 3.14159265358979;
+    worst = std::max(worst, degrees);
+    sum += degrees;
+    ++checked;
+  }
+  ASSERT_GT(checked, 100);
+  EXPECT_LT(sum / checked, 2.0);
+  EXPECT_LT(worst, 10.0);
 }
 
 }  // namespace
