@@ -15,7 +15,7 @@
 #include "gltf/surface_color.h"
 #include "mesh/mesh_io.h"
 #include "metrics/color_distance.h"
-#include "metrics/parallel_blocks.h"
+#include "core/parallel_blocks.h"
 #include "metrics/surface_distance.h"
 #include "tools/command.h"
 #include "tools/gltf_info.h"

@@ -1,6 +1,6 @@
 // eqmesh perturb IN OUT --noise FRACTION: writes a deterministic noisy copy of
 // IN (every vertex moved by exactly FRACTION x bbox diagonal, uniform random
-// direction; see lib/metrics/perturb.h). The yardstick for `eqmesh compare`.
+// direction; see tools/perturb.h). The yardstick for `eqmesh compare`.
 #include <cinttypes>
 #include <cstdio>
 #include <string>
@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "mesh/mesh_io.h"
-#include "metrics/perturb.h"
+#include "tools/perturb.h"
 #include "tools/command.h"
 
 namespace eqmesh::cli {

@@ -95,99 +95,139 @@ std::vector<uint32_t> NearbyCandidates(const Mesh& input, const std::vector<uint
   return out;
 }
 
-// Decoded vertex -> input vertex by nearest position: each decoded vertex lies
-// within Draco's quantization step of its input vertex. Candidates come from a
-// window on x (inputs sorted by x), so this is O(n log n + n w). Vertices that
-// share a position are told apart by connectivity: each takes the candidate that
-// completes the most input faces with the decoded faces around it.
-StatusOr<std::vector<uint32_t>> MatchByPosition(const Mesh& input, const Mesh& decoded,
-                                                double tolerance) {
+constexpr uint32_t kUnset = std::numeric_limits<uint32_t>::max();
+
+// The matching under construction: decoded vertex -> input vertex (kUnset while
+// open), which inputs are taken, and the candidates of the vertices that have
+// more than one.
+struct Matching {
+  std::vector<uint32_t> map;
+  std::vector<bool> used;
+  std::vector<std::vector<uint32_t>> ambiguous;
+};
+
+// Every decoded vertex's input candidates within `tolerance` (a window on x over
+// the inputs sorted by x: O(n log n + n w)); a single candidate is taken at once.
+Status MatchUniquePositions(const Mesh& input, const Mesh& decoded, double tolerance, Matching* m) {
   const uint32_t n = static_cast<uint32_t>(input.positions.size());
-  if (decoded.positions.size() != n || decoded.faces.size() != input.faces.size()) {
-    return InternalError("Draco changed the base vertex or face count");
-  }
   std::vector<uint32_t> by_x(n);
   for (uint32_t i = 0; i < n; ++i) by_x[i] = i;
   std::sort(by_x.begin(), by_x.end(), [&](uint32_t a, uint32_t b) {
     return input.positions[a].x() < input.positions[b].x();
   });
-  constexpr uint32_t kUnset = std::numeric_limits<uint32_t>::max();
-  std::vector<uint32_t> map(n, kUnset);
-  std::vector<bool> used(n, false);
-  std::vector<std::vector<uint32_t>> ambiguous(n);
+  m->map.assign(n, kUnset);
+  m->used.assign(n, false);
+  m->ambiguous.assign(n, {});
   for (uint32_t i = 0; i < n; ++i) {
     std::vector<uint32_t> c = NearbyCandidates(input, by_x, decoded.positions[i], tolerance);
     if (c.empty()) {
       return InternalError("Draco base vertex " + std::to_string(i) + " has no input vertex within " +
                            std::to_string(tolerance));
     }
-    if (c.size() == 1) {
-      if (used[c[0]]) return InternalError("Draco base vertices are not matchable (two take input " + std::to_string(c[0]) + ")");
-      used[c[0]] = true;
-      map[i] = c[0];
-    } else {
-      ambiguous[i] = std::move(c);
+    if (c.size() > 1) {
+      m->ambiguous[i] = std::move(c);
+      continue;
+    }
+    if (m->used[c[0]]) {
+      return InternalError("Draco base vertices are not matchable (two take input " + std::to_string(c[0]) + ")");
+    }
+    m->used[c[0]] = true;
+    m->map[i] = c[0];
+  }
+  return Status::Ok();
+}
+
+// How many input faces decoded vertex i would complete, were it `candidate`, with
+// the neighbours matched so far.
+class FaceCompletion {
+ public:
+  FaceCompletion(const Mesh& input, const Mesh& decoded) : decoded_(decoded), faces_of_(decoded.positions.size()) {
+    for (const Face& f : input.faces) input_faces_.insert(SortedFace(f[0], f[1], f[2]));
+    for (uint32_t f = 0; f < decoded.faces.size(); ++f) {
+      for (uint32_t v : decoded.faces[f]) faces_of_[v].push_back(f);
     }
   }
-  std::set<FaceKey> input_faces;
-  for (const Face& f : input.faces) input_faces.insert(SortedFace(f[0], f[1], f[2]));
-  std::vector<std::vector<uint32_t>> faces_of(n);
-  for (uint32_t f = 0; f < decoded.faces.size(); ++f) {
-    for (uint32_t v : decoded.faces[f]) faces_of[v].push_back(f);
-  }
-  auto score = [&](uint32_t i, uint32_t candidate) {
+
+  int Score(uint32_t i, uint32_t candidate, const std::vector<uint32_t>& map) const {
     int s = 0;
-    for (uint32_t f : faces_of[i]) {
-      const Face& t = decoded.faces[f];
+    for (uint32_t f : faces_of_[i]) {
+      const Face& t = decoded_.faces[f];
       FaceKey k;
       bool known = true;
       for (int c = 0; c < 3 && known; ++c) {
         k[c] = t[c] == i ? candidate : map[t[c]];
         known = k[c] != kUnset;
       }
-      if (known && input_faces.count(SortedFace(k[0], k[1], k[2]))) ++s;
+      if (known && input_faces_.count(SortedFace(k[0], k[1], k[2]))) ++s;
     }
     return s;
-  };
-  // Resolve the ambiguous vertices best-scoring first, pass after pass, so each
-  // choice sees as many assigned neighbours as possible.
-  for (bool progress = true; progress;) {
-    progress = false;
-    for (uint32_t i = 0; i < n; ++i) {
-      if (map[i] != kUnset || ambiguous[i].empty()) continue;
-      int best_score = -1;
-      uint32_t best_v = kUnset;
-      for (uint32_t c : ambiguous[i]) {
-        if (used[c]) continue;
-        const int sc = score(i, c);
-        if (sc > best_score) {
-          best_score = sc;
-          best_v = c;
-        }
+  }
+
+ private:
+  const Mesh& decoded_;
+  std::set<FaceKey> input_faces_;
+  std::vector<std::vector<uint32_t>> faces_of_;
+};
+
+// One pass over the open vertices in vertex order: each takes its free candidate
+// completing the most input faces, except that one completing none waits while
+// the pass has assigned nothing yet (its neighbours may settle it). Returns
+// whether anything was assigned.
+StatusOr<bool> AssignBestScoring(const FaceCompletion& completion, Matching* m) {
+  bool progress = false;
+  for (uint32_t i = 0; i < m->map.size(); ++i) {
+    if (m->map[i] != kUnset || m->ambiguous[i].empty()) continue;
+    int best_score = -1;
+    uint32_t best_v = kUnset;
+    for (uint32_t c : m->ambiguous[i]) {
+      if (m->used[c]) continue;
+      const int sc = completion.Score(i, c, m->map);
+      if (sc > best_score) {
+        best_score = sc;
+        best_v = c;
       }
-      if (best_v == kUnset) return InternalError("Draco base vertices are not matchable (candidates used up)");
-      if (best_score == 0 && !progress) continue;  // wait for neighbours unless stuck
-      used[best_v] = true;
-      map[i] = best_v;
-      progress = true;
     }
-    if (!progress) {
-      for (uint32_t i = 0; i < n && !progress; ++i) {
-        if (map[i] != kUnset) continue;
-        for (uint32_t c : ambiguous[i]) {
-          if (used[c]) continue;
-          used[c] = true;
-          map[i] = c;
-          progress = true;
-          break;
-        }
-      }
+    if (best_v == kUnset) return InternalError("Draco base vertices are not matchable (candidates used up)");
+    if (best_score == 0 && !progress) continue;
+    m->used[best_v] = true;
+    m->map[i] = best_v;
+    progress = true;
+  }
+  return progress;
+}
+
+// When a pass assigns nothing: the first open vertex takes its first free candidate.
+bool AssignFirstFree(Matching* m) {
+  for (uint32_t i = 0; i < m->map.size(); ++i) {
+    if (m->map[i] != kUnset) continue;
+    for (uint32_t c : m->ambiguous[i]) {
+      if (m->used[c]) continue;
+      m->used[c] = true;
+      m->map[i] = c;
+      return true;
     }
   }
-  for (uint32_t v : map) {
+  return false;
+}
+
+// Decoded vertex -> input vertex by nearest position: each decoded vertex lies
+// within Draco's quantization step of its input vertex. Vertices that share a
+// position are told apart by connectivity (FaceCompletion), pass after pass.
+StatusOr<std::vector<uint32_t>> MatchByPosition(const Mesh& input, const Mesh& decoded, double tolerance) {
+  if (decoded.positions.size() != input.positions.size() || decoded.faces.size() != input.faces.size()) {
+    return InternalError("Draco changed the base vertex or face count");
+  }
+  Matching m;
+  EQMESH_RETURN_IF_ERROR(MatchUniquePositions(input, decoded, tolerance, &m));
+  const FaceCompletion completion(input, decoded);
+  for (bool progress = true; progress;) {
+    EQMESH_ASSIGN_OR_RETURN(progress, AssignBestScoring(completion, &m));
+    if (!progress) progress = AssignFirstFree(&m);
+  }
+  for (uint32_t v : m.map) {
     if (v == kUnset) return InternalError("Draco base vertices are not matchable");
   }
-  return map;
+  return m.map;
 }
 
 // The map must carry every decoded face onto an input face (as vertex sets).

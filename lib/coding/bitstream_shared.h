@@ -34,7 +34,7 @@
 //                    (lib/coding/eq), decoded against the hierarchy level layout,
 //                    with context-modelled tangential parts when kTangentialContext;
 //                    for kZerotree (since 1.1) chunk 0 is ONE embedded payload of
-//                    all levels (zerotree_levels.h) and chunks 1..J-1 are empty.
+//                    all levels (zerotree_decoder.h) and chunks 1..J-1 are empty.
 //
 // A reader that stops after level chunk k has a complete level-(k+1) mesh: the level
 // table lets it know every chunk's byte range from the header alone. (Zerotree:
@@ -64,7 +64,7 @@ enum class TransformId : uint8_t {
 enum class CoderId : uint8_t {
   kEq = 0,        // Estimation-Quantization coder (Lavu, Choi, Baraniuk 2003)
   kZerotree = 1,  // zerotree coder (Khodakovsky, Guskov; PGC), since 1.1
-  kUniform = 2,   // baseline: uniform scalar quantizer + adaptive Exp-Golomb (level_codec.h)
+  kUniform = 2,   // baseline: uniform scalar quantizer + adaptive Exp-Golomb (level_decoder.h)
 };
 constexpr uint8_t kMaxCoderId = 2;
 

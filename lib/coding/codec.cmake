@@ -3,17 +3,8 @@
 # eqmesh_encoder links it so both sides share one bitstream definition.
 set(EQMESH_CODEC_DIR "${CMAKE_CURRENT_LIST_DIR}")
 
-add_library(eqmesh_decoder STATIC
-  ${EQMESH_CODEC_DIR}/atlas/atlas_layout.cpp
-  ${EQMESH_CODEC_DIR}/atlas/seam_split.cpp
-  ${EQMESH_CODEC_DIR}/compact_base/compact_base_model.cpp
-  ${EQMESH_CODEC_DIR}/compact_base/compact_base_decoder.cpp
-  ${EQMESH_CODEC_DIR}/base_mesh_decoder.cpp
-  ${EQMESH_CODEC_DIR}/stream_header.cpp
-  ${EQMESH_CODEC_DIR}/level_codec.cpp
-  ${EQMESH_CODEC_DIR}/level_synthesis.cpp
-  ${EQMESH_CODEC_DIR}/zerotree_levels.cpp
-  ${EQMESH_CODEC_DIR}/decoder.cpp)
+eqmesh_sources_in(${PROJECT_SOURCE_DIR}/lib EQMESH_STREAM_DECODER_SOURCES stream_decoder_sources)
+add_library(eqmesh_decoder STATIC ${stream_decoder_sources} ${EQMESH_CODEC_DIR}/base_mesh_decoder.cpp)
 target_include_directories(eqmesh_decoder PUBLIC "${PROJECT_SOURCE_DIR}/lib")
 # draco's imported targets lack Eigen's include path, so Eigen comes first via mesh.
 target_link_libraries(eqmesh_decoder PUBLIC eqmesh_eq_decoder eqmesh_zerotree eqmesh_entropy eqmesh_wavelet
@@ -30,6 +21,7 @@ add_library(eqmesh_encoder STATIC
   ${EQMESH_CODEC_DIR}/zerotree_encoder.cpp
   ${EQMESH_CODEC_DIR}/encoder.cpp
   ${EQMESH_CODEC_DIR}/level_count_search.cpp
+  ${EQMESH_CODEC_DIR}/stream_psnr.cpp
   ${EQMESH_CODEC_DIR}/rate_control.cpp)
 target_link_libraries(eqmesh_encoder PUBLIC eqmesh_decoder eqmesh_eq_encoder PRIVATE draco::draco)
 # lib/remesh is added after lib/coding, so test for its directory, not its target.

@@ -6,10 +6,10 @@
 #include "coding/atlas/atlas_layout.h"
 #include "coding/base_mesh_decoder.h"
 #include "coding/compact_base/compact_base_decoder.h"
-#include "coding/level_codec.h"
+#include "coding/level_decoder.h"
 #include "coding/level_synthesis.h"
 #include "coding/stream_header.h"
-#include "coding/zerotree_levels.h"
+#include "coding/zerotree_decoder.h"
 
 namespace eqmesh {
 namespace {

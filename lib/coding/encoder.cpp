@@ -25,12 +25,9 @@
 #include "coding/rate_control.h"
 #include "coding/semi_regular_reorder.h"
 #include "coding/stream_header.h"
+#include "coding/stream_psnr.h"
 #include "coding/zerotree/zerotree_coder.h"
 #include "coding/zerotree_encoder.h"
-
-#ifdef EQMESH_HAVE_METRICS
-#include "metrics/surface_distance.h"
-#endif
 
 namespace eqmesh {
 namespace {
@@ -312,19 +309,6 @@ StatusOr<Pass> EncodeZerotreeToBudget(const Prepared& prep, const EncodeOptions&
 constexpr uint64_t kSearchSamples = 200'000;
 constexpr double kSearchMarginDb = 0.05;
 
-StatusOr<double> MeasurePsnr(const std::vector<uint8_t>& bytes, const Mesh& original, uint64_t samples = 0) {
-  EQMESH_ASSIGN_OR_RETURN(Mesh decoded, Decode(bytes.data(), bytes.size()));
-#ifdef EQMESH_HAVE_METRICS
-  CompareOptions compare;
-  compare.samples = samples;
-  EQMESH_ASSIGN_OR_RETURN(SurfaceDistance comparison, CompareSurfaces(original, decoded, compare));
-  return comparison.psnr_db;
-#else
-  (void)original, (void)samples;
-  return UnsupportedFeature("PSNR measurement needs eqmesh_metrics, not in this build");
-#endif
-}
-
 // The search's choice, measured at the default sample count; in the rare case
 // that it then misses the target, the smallest other pass that meets it (none:
 // the best one tried).
@@ -339,7 +323,7 @@ StatusOr<Pass> FinishQualitySearch(std::vector<Pass> passes, size_t chosen, cons
   Pass* best = nullptr;
   for (Pass& pass : passes) {
     if (&pass != &passes[0] && pass.report.psnr_db < options.target_psnr + kSearchMarginDb) continue;
-    EQMESH_ASSIGN_OR_RETURN(pass.report.psnr_db, MeasurePsnr(pass.bytes, *options.original));
+    EQMESH_ASSIGN_OR_RETURN(pass.report.psnr_db, MeasureStreamPsnr(pass.bytes, *options.original));
     if (pass.report.psnr_db >= options.target_psnr) {
       best = &pass;
       break;
@@ -361,7 +345,7 @@ StatusOr<Pass> EncodeZerotreeForQuality(const Prepared& prep, const EncodeOption
   std::vector<Pass> passes;
   BudgetEvaluator eval = [&](uint64_t budget) -> StatusOr<BudgetPoint> {
     EQMESH_ASSIGN_OR_RETURN(Pass pass, EncodeZerotreeToBudget(prep, options, budget, cache));
-    EQMESH_ASSIGN_OR_RETURN(pass.report.psnr_db, MeasurePsnr(pass.bytes, *options.original, kSearchSamples));
+    EQMESH_ASSIGN_OR_RETURN(pass.report.psnr_db, MeasureStreamPsnr(pass.bytes, *options.original, kSearchSamples));
     const BudgetPoint point{budget, pass.bytes.size(), pass.report.psnr_db};
     passes.push_back(std::move(pass));
     return point;
@@ -431,7 +415,7 @@ RateEvaluator RecordingEvaluator(const Prepared& prep, const EncodeOptions& opti
     point.lambda_code = code;
     point.bpv = pass.report.bpv;
     if (measure) {
-      EQMESH_ASSIGN_OR_RETURN(point.psnr_db, MeasurePsnr(pass.bytes, *options.original, kSearchSamples));
+      EQMESH_ASSIGN_OR_RETURN(point.psnr_db, MeasureStreamPsnr(pass.bytes, *options.original, kSearchSamples));
       pass.report.psnr_db = point.psnr_db;
     }
     passes->push_back(std::move(pass));
@@ -530,7 +514,7 @@ StatusOr<std::vector<uint8_t>> Encode(const SemiRegularMesh& mesh, const EncodeO
     pass.report.rate_evaluations = 1;
   }
   if (options.measure_psnr && !pass.report.psnr_measured) {
-    EQMESH_ASSIGN_OR_RETURN(pass.report.psnr_db, MeasurePsnr(pass.bytes, *options.original));
+    EQMESH_ASSIGN_OR_RETURN(pass.report.psnr_db, MeasureStreamPsnr(pass.bytes, *options.original));
     pass.report.psnr_measured = true;
   }
   ReportProgress(options.progress, "encode", 1.0);

@@ -7,9 +7,7 @@
 #include <utility>
 
 #include "coding/decoder.h"
-#ifdef EQMESH_HAVE_METRICS
-#include "metrics/surface_distance.h"
-#endif
+#include "coding/stream_psnr.h"
 
 namespace eqmesh {
 namespace {
@@ -20,28 +18,10 @@ namespace {
 // again at the default count when the caller asked for --measure.
 constexpr uint64_t kRankingSamples = 250'000;
 
-// PSNR of `mesh` against the original at `samples` per direction (0: default).
-StatusOr<double> MeasurePsnr(const Mesh& mesh, const Mesh& original, uint64_t samples) {
-#ifdef EQMESH_HAVE_METRICS
-  CompareOptions compare;
-  compare.samples = samples;
-  EQMESH_ASSIGN_OR_RETURN(SurfaceDistance d, CompareSurfaces(original, mesh, compare));
-  return d.psnr_db;
-#else
-  (void)mesh, (void)original, (void)samples;
-  return UnsupportedFeature("choosing the level count needs eqmesh_metrics, not in this build");
-#endif
-}
-
-StatusOr<double> MeasureDecoded(const std::vector<uint8_t>& bytes, const Mesh& original, uint64_t samples) {
-  EQMESH_ASSIGN_OR_RETURN(Mesh decoded, Decode(bytes.data(), bytes.size()));
-  return MeasurePsnr(decoded, original, samples);
-}
-
 // PSNR of the uncoded mesh truncated to `levels`: no stream of that many levels
 // can do better, so a PSNR target above it need not be searched at all.
 StatusOr<double> CeilingPsnr(const SemiRegularMesh& mesh, int levels, const Mesh& original) {
-  return MeasurePsnr(ExtractLevel(mesh, levels), original, kRankingSamples);
+  return MeasureMeshPsnr(ExtractLevel(mesh, levels), original, kRankingSamples);
 }
 
 // Coding only adds error to the truncated geometry; this margin covers the
@@ -67,7 +47,7 @@ StatusOr<Candidate> EncodeTruncated(const SemiRegularMesh& mesh, int levels, con
   Candidate c;
   EQMESH_ASSIGN_OR_RETURN(c.bytes, Encode(truncated, o, &c.report));
   if (!c.report.psnr_measured) {
-    EQMESH_ASSIGN_OR_RETURN(c.report.psnr_db, MeasureDecoded(c.bytes, *options.original, kRankingSamples));
+    EQMESH_ASSIGN_OR_RETURN(c.report.psnr_db, MeasureStreamPsnr(c.bytes, *options.original, kRankingSamples));
     c.report.psnr_measured = true;
   }
   return c;
@@ -176,7 +156,7 @@ StatusOr<std::vector<uint8_t>> EncodeChoosingLevels(const SemiRegularMesh& mesh,
     EQMESH_ASSIGN_OR_RETURN(chosen, ScanLevels(mesh, options, BetterAtRate, worse, &out));
   }
   if (options.measure_psnr) {
-    EQMESH_ASSIGN_OR_RETURN(chosen.report.psnr_db, MeasureDecoded(chosen.bytes, *options.original, 0));
+    EQMESH_ASSIGN_OR_RETURN(chosen.report.psnr_db, MeasureStreamPsnr(chosen.bytes, *options.original, 0));
   }
   if (report) *report = chosen.report;
   return std::move(chosen.bytes);

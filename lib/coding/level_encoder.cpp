@@ -77,9 +77,9 @@ StatusOr<std::vector<uint8_t>> EncodeEq(const LevelCodingParams& params,
   EqEncodeOptions options;
   // Both codes are 16 log2(lambda q0^2): the header's code is the EQ code.
   options.lambda_code = static_cast<int32_t>(params.lambda_code) + LevelLambdaOffset(hierarchy.levels(), j);
-  // The EQ coder multiplies lambda by its factor (J = R + lambda D); tangential
-  // errors matter less, so their lambda must be *smaller*: pass the reciprocal.
-  options.tangential_factor = 1.0 / params.tangential_factor;
+  // The header's factor divides lambda for the tangential parts; the EQ coder's
+  // scale multiplies it.
+  options.tangential_lambda_scale = 1.0 / params.tangential_factor;
   options.tangential_context = params.tangential_context;
   return EncodeEqLevel(layout, local, params.quantum, options, reconstructed);
 }

@@ -1,10 +1,10 @@
-// Encoder half of the per-level coefficient coders (see level_codec.h).
+// Encoder half of the per-level coefficient coders (see level_decoder.h).
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
-#include "coding/level_codec.h"
+#include "coding/level_decoder.h"
 
 namespace eqmesh {
 

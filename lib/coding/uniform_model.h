@@ -1,12 +1,12 @@
-// The adaptive model of one component of the uniform baseline coder (level_codec.h):
-// shared by its encoder (level_encoder.cpp) and decoder (level_codec.cpp) so the two
+// The adaptive model of one component of the uniform baseline coder (level_decoder.h):
+// shared by its encoder (level_encoder.cpp) and decoder (level_decoder.cpp) so the two
 // halves cannot drift apart.
 #pragma once
 
 #include <array>
 
 #include "coding/entropy/range_coder.h"
-#include "coding/level_codec.h"
+#include "coding/level_decoder.h"
 
 namespace eqmesh::uniform_coder {
 

@@ -18,7 +18,7 @@
 //
 // lambda <-> plane: the finest level's coefficients are quantized with step
 // 2^n quanta when the stream ends in bit plane n (zerotree_coder.h), and the
-// high-rate rule of the uniform coder (level_codec.h), lambda = 6 / (step^2 ln 2)
+// high-rate rule of the uniform coder (level_decoder.h), lambda = 6 / (step^2 ln 2)
 // per squared quantum, links the two:
 //   plane(lambda)  = clamp(round(log2(6 / (lambda ln 2)) / 2), 0, 40)
 //   lambda(plane)  = 6 / (4^plane ln 2)

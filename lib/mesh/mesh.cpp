@@ -2,10 +2,48 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <string>
 
 #include <Eigen/Geometry>
 
 namespace eqmesh {
+
+Status CheckIndicesAndCoordinates(const Mesh& mesh) {
+  for (size_t f = 0; f < mesh.faces.size(); ++f) {
+    for (uint32_t v : mesh.faces[f]) {
+      if (v >= mesh.positions.size()) {
+        return InvalidMesh("face " + std::to_string(f) + " uses vertex " + std::to_string(v) + " but the mesh has " +
+                           std::to_string(mesh.positions.size()) + " vertices");
+      }
+      if (!mesh.positions[v].allFinite()) {
+        return InvalidMesh("vertex " + std::to_string(v) + " has a non-finite coordinate");
+      }
+    }
+  }
+  return Status::Ok();
+}
+
+size_t DropUnreferencedVertices(Mesh* mesh) {
+  constexpr uint32_t kUnused = std::numeric_limits<uint32_t>::max();
+  std::vector<uint32_t> remap(mesh->positions.size(), kUnused);
+  for (const Face& f : mesh->faces) {
+    for (uint32_t i : f) remap[i] = 0;
+  }
+  uint32_t next = 0;
+  for (size_t v = 0; v < remap.size(); ++v) {
+    if (remap[v] == kUnused) continue;
+    mesh->positions[next] = mesh->positions[v];
+    remap[v] = next++;
+  }
+  const size_t dropped = mesh->positions.size() - next;
+  if (dropped == 0) return 0;
+  mesh->positions.resize(next);
+  for (Face& f : mesh->faces) {
+    for (uint32_t& i : f) i = remap[i];
+  }
+  return dropped;
+}
 
 BoundingBox ComputeBoundingBox(const Mesh& mesh) {
   BoundingBox box;
@@ -52,11 +90,16 @@ size_t CountReferencedVertices(const Mesh& mesh) {
 }
 
 std::vector<Vec3> VertexNormals(const Mesh& mesh) {
-  std::vector<Vec3> normals(mesh.positions.size(), Vec3::Zero());
-  for (const Face& f : mesh.faces) {
-    const Vec3& a = mesh.positions[f[0]];
-    const Vec3& b = mesh.positions[f[1]];
-    const Vec3& c = mesh.positions[f[2]];
+  return VertexNormals(mesh.faces, mesh.positions.size(), mesh.positions);
+}
+
+std::vector<Vec3> VertexNormals(const std::vector<Face>& faces, size_t num_vertices,
+                                const std::vector<Vec3>& positions) {
+  std::vector<Vec3> normals(num_vertices, Vec3::Zero());
+  for (const Face& f : faces) {
+    const Vec3& a = positions[f[0]];
+    const Vec3& b = positions[f[1]];
+    const Vec3& c = positions[f[2]];
     const Vec3 n = (b - a).cross(c - a);  // length = 2 * area: area weighting
     for (uint32_t v : f) normals[v] += n;
   }

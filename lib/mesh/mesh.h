@@ -10,6 +10,8 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "core/status.h"
+
 namespace eqmesh {
 
 using Vec3 = Eigen::Vector3d;
@@ -28,6 +30,14 @@ struct BoundingBox {
   Vec3 max = Vec3::Constant(0.0);
   double Diagonal() const { return (max - min).norm(); }
 };
+
+// Every face index below the vertex count and every vertex a face uses finite;
+// else kInvalidMesh naming the first face or vertex that is not.
+Status CheckIndicesAndCoordinates(const Mesh& mesh);
+
+// Removes the vertices no face uses, keeping the others in order (faces
+// renumbered); returns how many were removed.
+size_t DropUnreferencedVertices(Mesh* mesh);
 
 // Box of the vertices that some face uses (unreferenced vertices do not count);
 // all zeros for an empty mesh.
@@ -49,6 +59,11 @@ size_t CountReferencedVertices(const Mesh& mesh);
 
 // Area-weighted vertex normals (zero vector for isolated or degenerate fans).
 std::vector<Vec3> VertexNormals(const Mesh& mesh);
+// The same over `faces` for vertices [0, num_vertices) of `positions`: ext_spec's
+// normative rule (the wavelet frames' F1), whose order of operations (face cross
+// products summed in face order, then n / |n|) a decoder must keep.
+std::vector<Vec3> VertexNormals(const std::vector<Face>& faces, size_t num_vertices,
+                                const std::vector<Vec3>& positions);
 
 // (b - a) x (c - a) of every face (a, b, c): its normal times twice its area.
 std::vector<Vec3> FaceCrossProducts(const Mesh& mesh);

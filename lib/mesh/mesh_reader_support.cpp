@@ -39,25 +39,6 @@ Status CheckIndices(const Mesh& mesh, const std::string& name) {
   return Status::Ok();
 }
 
-size_t DropUnreferencedVertices(Mesh* mesh) {
-  constexpr uint32_t kUnused = std::numeric_limits<uint32_t>::max();
-  std::vector<uint32_t> remap(mesh->positions.size(), kUnused);
-  for (const Face& f : mesh->faces)
-    for (uint32_t i : f) remap[i] = 0;
-  uint32_t next = 0;
-  for (size_t v = 0; v < remap.size(); ++v) {
-    if (remap[v] == kUnused) continue;
-    mesh->positions[next] = mesh->positions[v];
-    remap[v] = next++;
-  }
-  const size_t dropped = mesh->positions.size() - next;
-  if (dropped == 0) return 0;
-  mesh->positions.resize(next);
-  for (Face& f : mesh->faces)
-    for (uint32_t& i : f) i = remap[i];
-  return dropped;
-}
-
 }  // namespace
 
 void MeshBuilder::AddPolygon(const uint32_t* corners, size_t n) {

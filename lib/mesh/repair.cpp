@@ -30,17 +30,7 @@ constexpr uint32_t kNone = MeshTopology::kNone;
 Status ValidateInput(const Mesh& mesh) {
   const size_t n = mesh.positions.size();
   if (n > kNone) return ResourceLimit("mesh has more vertices than 32-bit indices can address");
-  for (size_t f = 0; f < mesh.faces.size(); ++f) {
-    for (uint32_t v : mesh.faces[f]) {
-      if (v >= n)
-        return InvalidMesh("face " + std::to_string(f) + " uses vertex " + std::to_string(v) +
-                           " but the mesh has " + std::to_string(n) + " vertices");
-      const Vec3& p = mesh.positions[v];
-      if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
-        return InvalidMesh("vertex " + std::to_string(v) + " has a non-finite coordinate");
-    }
-  }
-  return Status::Ok();
+  return CheckIndicesAndCoordinates(mesh);
 }
 
 bool Contains(const Face& f, uint32_t v) { return f[0] == v || f[1] == v || f[2] == v; }
@@ -398,23 +388,7 @@ Status OrientConsistently(Mesh* mesh, RepairReport* report) {
                        " rounds of cutting");
 }
 
-// ---------------------------------------------------------------- step 6: compact
-
-void DropUnreferencedVertices(Mesh* mesh, RepairReport* report) {
-  std::vector<uint32_t> remap(mesh->positions.size(), kNone);
-  for (const Face& f : mesh->faces)
-    for (uint32_t v : f) remap[v] = 0;
-  uint32_t next = 0;
-  for (uint32_t v = 0; v < remap.size(); ++v) {
-    if (remap[v] == kNone) continue;
-    remap[v] = next;
-    mesh->positions[next++] = mesh->positions[v];
-  }
-  report->unreferenced_vertices_removed += mesh->positions.size() - next;
-  mesh->positions.resize(next);
-  for (Face& f : mesh->faces)
-    for (uint32_t& v : f) v = remap[v];
-}
+// ---------------------------------------------------------------- step 6: compact (mesh.h)
 
 Status CheckRepaired(const Mesh& mesh, double tolerance) {
   DiagnoseOptions options;
@@ -460,7 +434,7 @@ StatusOr<Mesh> RepairForRemeshing(const Mesh& input, RepairReport* report, const
   SplitNonManifoldEdges(&mesh, r);
   SplitNonManifoldVertices(&mesh, r);
   EQMESH_RETURN_IF_ERROR(OrientConsistently(&mesh, r));
-  DropUnreferencedVertices(&mesh, r);
+  r->unreferenced_vertices_removed += DropUnreferencedVertices(&mesh);
   EQMESH_RETURN_IF_ERROR(CheckRepaired(mesh, options.degenerate_area_tolerance));
   return mesh;
 }

@@ -164,17 +164,7 @@ uint32_t Partition(const std::vector<BuildPrim>& prims, std::vector<uint32_t>* o
 Status ValidateForBvh(const Mesh& mesh) {
   if (mesh.faces.empty()) return InvalidMesh("mesh has no faces");
   if (mesh.faces.size() >= kNoFace) return ResourceLimit("mesh has too many faces for a BVH");
-  for (size_t f = 0; f < mesh.faces.size(); ++f) {
-    for (uint32_t v : mesh.faces[f]) {
-      if (v >= mesh.positions.size())
-        return InvalidMesh("face " + std::to_string(f) + " uses vertex " + std::to_string(v) +
-                           " but the mesh has " + std::to_string(mesh.positions.size()) +
-                           " vertices");
-      if (!mesh.positions[v].allFinite())
-        return InvalidMesh("vertex " + std::to_string(v) + " has a non-finite coordinate");
-    }
-  }
-  return Status::Ok();
+  return CheckIndicesAndCoordinates(mesh);
 }
 
 Vec3 ClosestPointOnSegment(const Vec3& p, const Vec3& a, const Vec3& b, double* t_out) {

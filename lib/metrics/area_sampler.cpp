@@ -12,19 +12,12 @@ namespace eqmesh {
 StatusOr<AreaSampler> AreaSampler::Build(const Mesh& mesh) {
   if (mesh.positions.empty()) return InvalidMesh("mesh has no vertices");
   if (mesh.faces.empty()) return InvalidMesh("mesh has no faces");
+  EQMESH_RETURN_IF_ERROR(CheckIndicesAndCoordinates(mesh));
   AreaSampler sampler;
   sampler.faces_.reserve(mesh.faces.size());
   sampler.cumulative_.reserve(mesh.faces.size());
   double total = 0.0;
   for (size_t f = 0; f < mesh.faces.size(); ++f) {
-    for (uint32_t v : mesh.faces[f]) {
-      if (v >= mesh.positions.size())
-        return InvalidMesh("face " + std::to_string(f) + " uses vertex " + std::to_string(v) +
-                           " but the mesh has " + std::to_string(mesh.positions.size()) +
-                           " vertices");
-      if (!mesh.positions[v].allFinite())
-        return InvalidMesh("vertex " + std::to_string(v) + " has a non-finite coordinate");
-    }
     const Corners c{mesh.positions[mesh.faces[f][0]], mesh.positions[mesh.faces[f][1]],
                     mesh.positions[mesh.faces[f][2]]};
     const double area = 0.5 * (c.b - c.a).cross(c.c - c.a).norm();

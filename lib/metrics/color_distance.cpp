@@ -7,7 +7,7 @@
 
 #include "mesh/triangle_bvh.h"
 #include "metrics/area_sampler.h"
-#include "metrics/parallel_blocks.h"
+#include "core/parallel_blocks.h"
 
 namespace eqmesh {
 namespace {

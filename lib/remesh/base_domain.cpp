@@ -14,10 +14,10 @@
 
 #include "mesh/mesh_topology.h"
 #include "mesh/triangle_bvh.h"
-#include "remesh/parallel_for.h"
+#include "core/parallel_for.h"
 #include "remesh/quality_checks.h"
 #include "remesh/ring_flattening.h"
-#include "remesh/spin_team.h"
+#include "core/spin_team.h"
 
 namespace eqmesh {
 namespace {
@@ -126,6 +126,9 @@ class Simplifier {
   bool GeometryAllows(uint32_t v, size_t p, const Ring& ring, const std::vector<Vec2>& z);
   bool FacesAwayFromInput(const Vec3& a, const Vec3& b, const Vec3& c) const;
   void Apply(uint32_t v, size_t p, const Ring& ring, const std::vector<Vec2>& z);
+  void GatherStarItems(uint32_t v, const Ring& ring, const std::vector<Vec2>& z);
+  void CollapseStarFaces(uint32_t v, uint32_t u, const Ring& ring);
+  void PlaceStarItems(uint32_t v, const Ring& ring, const std::vector<Vec2>& z);
   Vec2 ChartOf(uint32_t corner, uint32_t v, const Ring& ring, const std::vector<Vec2>& z) const;
   bool PlaceOnEdge(uint32_t x, uint32_t w1, uint32_t w2, double s, const std::vector<uint32_t>& new_faces);
   bool PlaceBoundaryItem(uint32_t x, const Face& old_face, const Vec2& q, uint32_t v, const Ring& ring,
@@ -615,9 +618,9 @@ void Simplifier::PlaceInteriorItem(uint32_t x, const Vec2& q, uint32_t v, const 
   params_[x] = best_pp;
 }
 
-void Simplifier::Apply(uint32_t v, size_t p, const Ring& ring, const std::vector<Vec2>& z) {  // NOLINT
-  const uint32_t u = ring.verts[p];
-  // Chart positions of everything mapped into the star, before touching faces.
+// Phase 1 of a collapse: the chart position of every input vertex mapped into v's
+// star (and of v itself), taken while the star's faces are still the old ones.
+void Simplifier::GatherStarItems(uint32_t v, const Ring& ring, const std::vector<Vec2>& z) {
   std::vector<uint32_t>& items = collapse_.items;
   std::vector<Vec2>& chart = collapse_.chart;
   items.clear();
@@ -635,11 +638,13 @@ void Simplifier::Apply(uint32_t v, size_t p, const Ring& ring, const std::vector
   items.push_back(v);
   chart.push_back(Vec2::Zero());
   // Boundary items need their pre-collapse face; remember those.
-  std::vector<ParamPoint>& old_params = collapse_.old_params;
-  old_params.clear();
-  for (uint32_t x : items) old_params.push_back(params_[x]);
+  collapse_.old_params.clear();
+  for (uint32_t x : items) collapse_.old_params.push_back(params_[x]);
+}
 
-  // Retriangulate: faces with u die, the others get u in place of v.
+// Phase 2: retriangulate the star: faces with u die, the others get u in place of
+// v; v leaves the mesh.
+void Simplifier::CollapseStarFaces(uint32_t v, uint32_t u, const Ring& ring) {
   std::vector<uint32_t>& new_faces = collapse_.new_faces;
   std::vector<Face>& old_corners = collapse_.old_corners;
   new_faces.clear();
@@ -666,24 +671,35 @@ void Simplifier::Apply(uint32_t v, size_t p, const Ring& ring, const std::vector
   alive_[v] = 0;
   --alive_count_;
   if (boundary_[v]) --loop_size_[loop_of_[v]];
+}
 
+// Phase 3: every gathered item gets a parameter on the new faces (boundary items
+// on the boundary edges, v on the chord between its boundary neighbours).
+void Simplifier::PlaceStarItems(uint32_t v, const Ring& ring, const std::vector<Vec2>& z) {
+  const std::vector<uint32_t>& items = collapse_.items;
+  const std::vector<uint32_t>& new_faces = collapse_.new_faces;
   for (size_t i = 0; i < items.size(); ++i) {
     const uint32_t x = items[i];
     bool placed = false;
     if (boundary_[x] && x != v) {
-      const size_t k = static_cast<size_t>(std::find(ring.faces.begin(), ring.faces.end(), old_params[i].face) -
-                                           ring.faces.begin());
-      placed = PlaceBoundaryItem(x, old_corners[k], chart[i], v, ring, z, new_faces);
+      const size_t k = static_cast<size_t>(
+          std::find(ring.faces.begin(), ring.faces.end(), collapse_.old_params[i].face) - ring.faces.begin());
+      placed = PlaceBoundaryItem(x, collapse_.old_corners[k], collapse_.chart[i], v, ring, z, new_faces);
     } else if (x == v && boundary_[v]) {
-      // v itself sits on the chord between its two boundary neighbours.
       const size_t d = ring.verts.size();
       const double span = z[d - 1].x() - z[0].x();
       const double s = std::abs(span) > 0.0 ? std::clamp(-z[0].x() / span, 0.0, 1.0) : 0.5;
       placed = PlaceOnEdge(x, ring.verts[0], ring.verts[d - 1], s, new_faces);
     }
-    if (!placed) PlaceInteriorItem(x, chart[i], v, ring, z, new_faces);
+    if (!placed) PlaceInteriorItem(x, collapse_.chart[i], v, ring, z, new_faces);
     bucket_[params_[x].face].push_back(x);
   }
+}
+
+void Simplifier::Apply(uint32_t v, size_t p, const Ring& ring, const std::vector<Vec2>& z) {
+  GatherStarItems(v, ring, z);
+  CollapseStarFaces(v, ring.verts[p], ring);
+  PlaceStarItems(v, ring, z);
 }
 
 void Simplifier::Run(size_t target, const ProgressFn& progress) {

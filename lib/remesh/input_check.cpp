@@ -46,17 +46,7 @@ Status CheckNoDuplicateFaces(const Mesh& mesh) {
 
 Status CheckRemeshable(const Mesh& mesh, const MeshTopology& topology) {
   if (mesh.faces.empty()) return InvalidMesh("mesh has no faces");
-  for (size_t f = 0; f < mesh.faces.size(); ++f) {
-    for (uint32_t v : mesh.faces[f]) {
-      if (v >= mesh.positions.size()) {
-        return InvalidMesh("face " + std::to_string(f) + " references vertex " + std::to_string(v) +
-                           " but the mesh has " + std::to_string(mesh.positions.size()) + " vertices");
-      }
-      if (!mesh.positions[v].allFinite()) {
-        return InvalidMesh("vertex " + std::to_string(v) + " has a non-finite coordinate");
-      }
-    }
-  }
+  EQMESH_RETURN_IF_ERROR(CheckIndicesAndCoordinates(mesh));
   EQMESH_RETURN_IF_ERROR(CheckNoDuplicateFaces(mesh));
   size_t non_manifold = 0, inconsistent = 0;
   uint32_t first_nm = MeshTopology::kNone, first_inc = MeshTopology::kNone;

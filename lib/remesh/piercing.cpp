@@ -9,7 +9,7 @@
 #include "remesh/input_pleats.h"
 #include "remesh/level_domain.h"
 #include "remesh/level_refiner.h"
-#include "remesh/parallel_for.h"
+#include "core/parallel_for.h"
 #include "remesh/quality_checks.h"
 #include "wavelet/butterfly.h"
 

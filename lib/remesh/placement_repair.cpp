@@ -5,7 +5,7 @@
 #include <Eigen/Geometry>
 
 #include "remesh/level_refiner.h"
-#include "remesh/parallel_for.h"
+#include "core/parallel_for.h"
 #include "remesh/quality_checks.h"
 
 namespace eqmesh::remesh_internal {

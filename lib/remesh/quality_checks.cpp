@@ -7,7 +7,7 @@
 #include <Eigen/Geometry>
 
 #include "mesh/triangle_bvh.h"
-#include "remesh/parallel_for.h"
+#include "core/parallel_for.h"
 
 namespace eqmesh {
 

@@ -6,7 +6,7 @@
 #include "coding/atlas/seam_split.h"
 #include "coding/decoder.h"
 #include "mesh/triangle_bvh.h"
-#include "remesh/parallel_for.h"
+#include "core/parallel_for.h"
 
 namespace eqmesh::texture {
 namespace {

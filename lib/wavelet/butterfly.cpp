@@ -232,21 +232,6 @@ Vec3 FaceCross(const Face& f, const std::vector<Vec3>& positions) {
   return (positions[f[1]] - x).cross(positions[f[2]] - x);
 }
 
-// Rule F1 (same definition as VertexNormals in mesh/mesh.h, restricted to level j).
-std::vector<Vec3> LevelVertexNormals(const std::vector<Face>& faces, uint32_t num_vertices,
-                                     const std::vector<Vec3>& positions) {
-  std::vector<Vec3> normals(num_vertices, Vec3::Zero());
-  for (const Face& f : faces) {
-    const Vec3 n = FaceCross(f, positions);
-    for (uint32_t v : f) normals[v] += n;
-  }
-  for (Vec3& n : normals) {
-    const double len = n.norm();
-    n = len > 0.0 ? Vec3(n / len) : Vec3::Zero();
-  }
-  return normals;
-}
-
 // Rule F2's second choice: the faces on the edge, or +Z.
 Vec3 EdgeFaceNormal(const LevelAdjacency& adj, const std::vector<Face>& faces, const Edge& e,
                     const std::vector<Vec3>& positions) {
@@ -282,7 +267,7 @@ std::vector<LocalFrame> ComputeOddFrames(const SemiRegularHierarchy& hierarchy, 
                                          const std::vector<Vec3>& positions) {
   const std::vector<Face>& faces = hierarchy.Faces(j);
   const std::vector<Vec3> vertex_normals =
-      LevelVertexNormals(faces, hierarchy.NumVertices(j), positions);
+      VertexNormals(faces, hierarchy.NumVertices(j), positions);
   std::vector<Vec3> stencil_normals;
   ApplyStencils(stencils, vertex_normals, &stencil_normals);
   std::optional<LevelAdjacency> adj;  // only built when a normal degenerates

@@ -304,7 +304,7 @@ Status ValidateInputs(const EqLevelLayout& layout, const std::vector<Vec3>& coef
                            std::to_string(layout.size()) + " odd vertices");
   }
   if (!(q0 > 0) || !std::isfinite(q0)) return InvalidArgument(where + ": quantum q0 must be positive");
-  if (!(options.tangential_factor > 0) || !std::isfinite(options.tangential_factor)) {
+  if (!(options.tangential_lambda_scale > 0) || !std::isfinite(options.tangential_lambda_scale)) {
     return InvalidArgument(where + ": tangential factor must be positive");
   }
   const int32_t code_limit = 1 << (kEqCodeBits - 1);
@@ -346,7 +346,7 @@ StatusOr<std::vector<uint8_t>> EncodeEqLevel(const EqLevelLayout& layout,
   side.lambda_code = options.lambda_code;
   side.tangential_context = options.tangential_context;
   const int32_t code_limit = 1 << (kEqCodeBits - 1);
-  side.tangential_code = ClampLog(16.0 * std::log2(options.tangential_factor), -code_limit, code_limit - 1);
+  side.tangential_code = ClampLog(16.0 * std::log2(options.tangential_lambda_scale), -code_limit, code_limit - 1);
   const double lambda_q0 = std::exp2(options.lambda_code / 16.0);
   const double lambda_t = lambda_q0 * std::exp2(side.tangential_code / 16.0);
   const EqContextTerms normal_terms(layout, false), tangential_terms(layout, true);

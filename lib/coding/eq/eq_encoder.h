@@ -30,11 +30,12 @@ namespace eqmesh {
 struct EqEncodeOptions {
   // lambda * q0^2 = 2^(lambda_code / 16); see EqLambdaCode.
   int32_t lambda_code = 0;
-  // lambda of the tangential components = tangential_factor * lambda. The seed
-  // says it used "100 lambda" for tangential components because their errors matter
-  // less; with its J = R + lambda D that would quantize them *finer*, so the intent
-  // is a 100x smaller lambda: the default is 1/100.
-  double tangential_factor = 0.01;
+  // lambda of the tangential components = tangential_lambda_scale * lambda: below 1,
+  // since their errors matter less (the stream header's tangential factor F divides
+  // lambda; this multiplies it, so the level encoder passes 1 / F). The seed says it
+  // used "100 lambda" for tangential components; with its J = R + lambda D that
+  // would quantize them *finer*, so the intent is a 100x smaller lambda.
+  double tangential_lambda_scale = 0.01;
   // Bound on the partition iterations (steps 7-16), per stream.
   int max_iterations = 12;
   // Context-modelled tangential components (stream 1.3); false writes 1.2 chunks.

@@ -1,5 +1,5 @@
-// Zerotree level data of the container (see zerotree_levels.h).
-#include "coding/zerotree_levels.h"
+// Zerotree level data of the container (see zerotree_decoder.h).
+#include "coding/zerotree_decoder.h"
 
 #include <algorithm>
 #include <string>

@@ -1,5 +1,5 @@
 // ForEachBlock: a dynamic (atomic counter) block schedule; see parallel_blocks.h.
-#include "metrics/parallel_blocks.h"
+#include "core/parallel_blocks.h"
 
 #include "core/thread_count.h"
 

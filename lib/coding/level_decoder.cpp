@@ -1,4 +1,4 @@
-#include "coding/level_codec.h"
+#include "coding/level_decoder.h"
 
 #include <array>
 #include <cmath>

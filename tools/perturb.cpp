@@ -2,7 +2,7 @@
 // Uniform directions by rejection (Marsaglia-style: draw in the cube, keep
 // points inside the unit ball, normalise) rather than by angles, because
 // sin/cos may differ in the last bit between libms while sqrt never does.
-#include "metrics/perturb.h"
+#include "tools/perturb.h"
 
 #include <cmath>
 #include <string>

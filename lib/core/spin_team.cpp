@@ -1,4 +1,4 @@
-#include "remesh/spin_team.h"
+#include "core/spin_team.h"
 
 #if defined(__x86_64__) || defined(__i386__)
 #include <immintrin.h>

@@ -1,4 +1,4 @@
-#include "remesh/spin_team.h"
+#include "core/spin_team.h"
 
 #include <gtest/gtest.h>
 
