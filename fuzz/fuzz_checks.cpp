@@ -7,7 +7,7 @@
 #include "coding/decoder.h"
 #include "gltf/extension.h"
 #include "gltf/gltf_loader.h"
-#include "mesh/mesh_reader_support.h"
+#include "mesh_io/mesh_reader_support.h"
 
 namespace eqmesh::fuzz {
 namespace {

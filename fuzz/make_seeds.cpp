@@ -21,7 +21,7 @@
 #include "gltf/compress_primitives.h"
 #include "gltf/gltf_io.h"
 #include "gltf/stream_decoder.h"
-#include "mesh/mesh_io.h"
+#include "mesh_io/mesh_io.h"
 
 namespace eqmesh::fuzz {
 namespace {

@@ -13,7 +13,7 @@
 
 #include "gltf/gltf_loader.h"
 #include "gltf/surface_color.h"
-#include "mesh/mesh_io.h"
+#include "mesh_io/mesh_io.h"
 #include "metrics/color_distance.h"
 #include "core/parallel_blocks.h"
 #include "metrics/surface_distance.h"

@@ -9,8 +9,8 @@
 
 #include "coding/decoder.h"
 #include "gltf/gltf_loader.h"
-#include "mesh/file_bytes.h"
-#include "mesh/mesh_io.h"
+#include "mesh_io/file_bytes.h"
+#include "mesh_io/mesh_io.h"
 #include "tools/command.h"
 
 namespace eqmesh::cli {

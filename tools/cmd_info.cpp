@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "mesh/diagnose.h"
-#include "mesh/mesh_io.h"
+#include "mesh_io/mesh_io.h"
 #include "tools/command.h"
 #include "tools/gltf_info.h"
 #include "tools/stream_info.h"

@@ -8,7 +8,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "mesh/mesh_io.h"
+#include "mesh_io/mesh_io.h"
 #include "tools/perturb.h"
 #include "tools/command.h"
 

@@ -7,8 +7,8 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "mesh/mesh_io.h"
-#include "mesh/semi_regular_io.h"
+#include "mesh_io/mesh_io.h"
+#include "mesh_io/semi_regular_io.h"
 #include "mesh/semi_regular.h"
 #include "remesh/remesh.h"
 #include "mesh/diagnose.h"

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "mesh/atomic_file.h"
+#include "mesh_io/atomic_file.h"
 
 namespace eqmesh::cli {
 

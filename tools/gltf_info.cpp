@@ -9,7 +9,7 @@
 #include "gltf/extension.h"
 #include "gltf/gltf_io.h"
 #include "gltf/gltf_loader.h"
-#include "mesh/file_bytes.h"
+#include "mesh_io/file_bytes.h"
 
 namespace eqmesh::cli {
 namespace {

@@ -10,7 +10,7 @@
 
 #include "core/status.h"
 #include "mesh/mesh.h"
-#include "mesh/mesh_io.h"
+#include "mesh_io/mesh_io.h"
 
 namespace eqmesh::cli {
 

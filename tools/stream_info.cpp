@@ -11,7 +11,7 @@
 
 #include "coding/bitstream_shared.h"
 #include "coding/decoder.h"
-#include "mesh/file_bytes.h"
+#include "mesh_io/file_bytes.h"
 #include "tools/command.h"
 
 namespace eqmesh::cli {

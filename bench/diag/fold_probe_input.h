@@ -9,9 +9,9 @@
 
 #include <Eigen/Geometry>
 
-#include "mesh/mesh_io.h"
+#include "mesh_io/mesh_io.h"
 #include "mesh/semi_regular.h"
-#include "mesh/semi_regular_io.h"
+#include "mesh_io/semi_regular_io.h"
 #include "mesh/triangle_bvh.h"
 #include "remesh/quality_checks.h"
 

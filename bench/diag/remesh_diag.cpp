@@ -26,9 +26,9 @@
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #include <stb/stb_image_write.h>
 
-#include "mesh/mesh_io.h"
+#include "mesh_io/mesh_io.h"
 #include "mesh/semi_regular.h"
-#include "mesh/semi_regular_io.h"
+#include "mesh_io/semi_regular_io.h"
 #include "mesh/triangle_bvh.h"
 
 using namespace eqmesh;

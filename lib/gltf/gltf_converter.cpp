@@ -12,8 +12,8 @@
 #include "gltf/gltf_io.h"
 #include "gltf/stream_decoder.h"
 #include "gltf/textured_compression.h"
-#include "mesh/file_bytes.h"
-#include "mesh/mesh_io.h"
+#include "mesh_io/file_bytes.h"
+#include "mesh_io/mesh_io.h"
 
 namespace eqmesh::gltf {
 namespace {

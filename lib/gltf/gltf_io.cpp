@@ -5,9 +5,9 @@
 
 #include "gltf/buffer_layout.h"
 #include "gltf/placeholder_indices.h"
-#include "mesh/atomic_file.h"
-#include "mesh/file_bytes.h"
-#include "mesh/mesh_reader_support.h"
+#include "mesh_io/atomic_file.h"
+#include "mesh_io/file_bytes.h"
+#include "mesh_io/mesh_reader_support.h"
 
 namespace eqmesh::gltf {
 namespace {

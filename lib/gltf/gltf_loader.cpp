@@ -6,7 +6,7 @@
 #include "gltf/buffer_layout.h"
 #include "gltf/extension.h"
 #include "gltf/gltf_io.h"
-#include "mesh/file_bytes.h"
+#include "mesh_io/file_bytes.h"
 
 namespace eqmesh::gltf {
 namespace {

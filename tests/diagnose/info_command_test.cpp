@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "mesh/mesh_io.h"
+#include "mesh_io/mesh_io.h"
 #include "test_support.h"
 
 namespace eqmesh {

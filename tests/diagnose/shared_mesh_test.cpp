@@ -5,7 +5,7 @@
 #include <string>
 
 #include "mesh/diagnose.h"
-#include "mesh/mesh_io.h"
+#include "mesh_io/mesh_io.h"
 #include "mesh/repair.h"
 #include "test_support.h"
 

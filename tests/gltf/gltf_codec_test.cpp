@@ -12,7 +12,7 @@
 #include "gltf/gltf_io.h"
 #include "gltf/gltf_loader.h"
 #include "gltf_test_support.h"
-#include "mesh/mesh_io.h"
+#include "mesh_io/mesh_io.h"
 #include "mesh/semi_regular.h"
 #include "mesh/triangle_bvh.h"
 #include "test_support.h"

@@ -14,7 +14,7 @@
 #include "gltf/surface_color.h"
 #include "gltf/textured_compression.h"
 #include "gltf_test_support.h"
-#include "mesh/file_bytes.h"
+#include "mesh_io/file_bytes.h"
 #include "test_support.h"
 
 namespace eqmesh {

@@ -3,7 +3,7 @@
 #include <cstdio>
 #include <fstream>
 
-#include "mesh/semi_regular_io.h"
+#include "mesh_io/semi_regular_io.h"
 #include "test_support.h"
 
 namespace eqmesh {

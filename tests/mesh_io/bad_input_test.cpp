@@ -5,8 +5,8 @@
 #include <random>
 
 #include "io_test_util.h"
-#include "mesh/file_bytes.h"
-#include "mesh/mesh_io.h"
+#include "mesh_io/file_bytes.h"
+#include "mesh_io/mesh_io.h"
 
 namespace eqmesh {
 namespace {

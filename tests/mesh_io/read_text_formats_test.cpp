@@ -2,7 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "io_test_util.h"
-#include "mesh/mesh_io.h"
+#include "mesh_io/mesh_io.h"
 
 namespace eqmesh {
 namespace {

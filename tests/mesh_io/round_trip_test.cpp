@@ -6,7 +6,7 @@
 #include <cstdio>
 
 #include "io_test_util.h"
-#include "mesh/mesh_io.h"
+#include "mesh_io/mesh_io.h"
 #include "test_support.h"
 
 namespace eqmesh {

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <vector>
 
-#include "mesh/mesh_io.h"
+#include "mesh_io/mesh_io.h"
 #include "test_support.h"
 
 namespace eqmesh {

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "mesh/mesh_io.h"
+#include "mesh_io/mesh_io.h"
 #include "remesh/remesh.h"
 #include "test_support.h"
 

@@ -7,7 +7,7 @@
 #include <limits>
 #include <map>
 
-#include "mesh/mesh_io.h"
+#include "mesh_io/mesh_io.h"
 #include "remesh/quality_checks.h"
 #include "remesh/remesh.h"
 #include "remesh_checks.h"

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "mesh/atomic_file.h"
+#include "mesh_io/atomic_file.h"
 #include "tools/tool_runner.h"
 
 namespace eqmesh::testing {

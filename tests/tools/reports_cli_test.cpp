@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "mesh/mesh_io.h"
+#include "mesh_io/mesh_io.h"
 #include "test_support.h"
 #include "tools/tool_runner.h"
 

@@ -10,7 +10,7 @@
 #include <cstring>
 #include <limits>
 
-#include "mesh/mesh_reader_support.h"
+#include "mesh_io/mesh_reader_support.h"
 
 namespace eqmesh::io_internal {
 namespace {

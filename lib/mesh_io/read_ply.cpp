@@ -7,8 +7,8 @@
 #include <cstring>
 #include <limits>
 
-#include "mesh/mesh_reader_support.h"
-#include "mesh/ply_header_reader.h"
+#include "mesh_io/mesh_reader_support.h"
+#include "mesh_io/ply_header_reader.h"
 
 namespace eqmesh::io_internal {
 namespace {

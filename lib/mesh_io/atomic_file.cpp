@@ -1,4 +1,4 @@
-#include "mesh/atomic_file.h"
+#include "mesh_io/atomic_file.h"
 
 #include <cerrno>
 #include <cstring>

@@ -1,4 +1,4 @@
-#include "mesh/mesh_reader_support.h"
+#include "mesh_io/mesh_reader_support.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "mesh/semi_regular_io.h"
+#include "mesh_io/semi_regular_io.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <fstream>
 #include <iterator>
 
-#include "mesh/atomic_file.h"
+#include "mesh_io/atomic_file.h"
 
 namespace eqmesh {
 namespace {

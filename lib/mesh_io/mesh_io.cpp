@@ -6,9 +6,9 @@
 #include <cctype>
 #include <cstring>
 
-#include "mesh/file_bytes.h"
-#include "mesh/mesh_io.h"
-#include "mesh/mesh_reader_support.h"
+#include "mesh_io/file_bytes.h"
+#include "mesh_io/mesh_io.h"
+#include "mesh_io/mesh_reader_support.h"
 
 namespace eqmesh {
 namespace {

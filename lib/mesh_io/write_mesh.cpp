@@ -12,8 +12,8 @@
 #include <limits>
 #include <memory>
 
-#include "mesh/atomic_file.h"
-#include "mesh/mesh_io.h"
+#include "mesh_io/atomic_file.h"
+#include "mesh_io/mesh_io.h"
 
 namespace eqmesh {
 namespace {

@@ -4,7 +4,7 @@
 // supported. Parsing is line based: '#' starts a comment, blank lines are skipped.
 #include <cstring>
 
-#include "mesh/mesh_reader_support.h"
+#include "mesh_io/mesh_reader_support.h"
 
 namespace eqmesh::io_internal {
 namespace {

@@ -1,4 +1,4 @@
-#include "mesh/file_bytes.h"
+#include "mesh_io/file_bytes.h"
 
 #include <algorithm>
 #include <cerrno>
