@@ -2,12 +2,12 @@
 //
 // Why: remeshing, encoding and the Metro meter fill hundreds of MB of fresh
 // vectors and walk BVHs in random order. With 4 KiB pages a tenth of their time
-// went to page faults alone (perf, armadillo_50k remesh), and more to TLB misses.
+// goes to page faults alone (perf, armadillo_50k remesh), and more to TLB misses.
 // glibc 2.35+ backs malloc with transparent huge pages when GLIBC_TUNABLES holds
 // glibc.malloc.hugetlb=1, but it reads tunables only when a process starts, so
-// the command re-executes itself once with that set. Measured on the bench VM
-// (kernel THP mode "madvise"): armadillo_50k remesh 3.7 -> 3.15 s, bunny encode
-// at 1 bpv 9.2 -> 6.9 s, compare 1.10 -> 0.86 s; output bytes unchanged.
+// the command re-executes itself once with that set: remesh, encode and compare
+// take 12-24 % less wall time, output bytes unchanged (measured on the bench VM,
+// kernel THP mode "madvise": bench/log/2026-12-05-remesh-notebook.md).
 #pragma once
 
 namespace eqmesh::cli {

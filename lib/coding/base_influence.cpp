@@ -60,7 +60,7 @@ class ImpulseRefiner {
   // Every vertex reached so far is a coarse vertex of level j (below
   // NumVertices(j)); each stencil reading one is evaluated once, and the
   // reached ones join support_ in index order from a bit set (its words
-  // between the first and last touched are scanned: a sort per impulse cost
+  // between the first and last touched are scanned: a sort per impulse costs
   // more than the dense refinement on a 104-vertex base).
   void RefineLevel(int j) {
     const StencilTable& s = stencils_[static_cast<size_t>(j)];

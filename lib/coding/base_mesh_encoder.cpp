@@ -26,11 +26,8 @@ namespace {
 
 // Share of a base vertex's uncorrected influence (BaseInfluenceWeights) that the
 // closed loop leaves: the finer details are coded against the decoded base and
-// absorb the rest. Measured (session 9, EQ coder, --bpv 0.25 / 1 / 4, PSNR dB
-// against share 1): 1/4 gave bunny lifted +0.47 / +0.07 / -0.01, unlifted +0.50 /
-// -0.11 / -0.01, horse lifted +0.56 / +0.15 / +0.02, unlifted +0.41 at 0.25 bpv;
-// 1/16 was no better (bunny lifted +0.37 / +0.05 / -0.04, horse lifted +0.65 /
-// +0.08 / -0.05). The depth chosen drops by one or two bits.
+// absorb the rest. 1/4 gains up to 0.5 dB at 0.25 bpv over share 1 and 1/16 no more
+// (measured: bench/log/2026-12-05-codec-notebook.md, "Base chunk").
 constexpr double kBaseUncorrectedShare = 0.25;
 
 // Draco connectivity methods we try, smallest output wins.

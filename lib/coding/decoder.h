@@ -73,7 +73,7 @@ struct StreamInfo {
 };
 
 // Measured (decode_alloc_bound_test): Draco's largest allocation for a hostile base
-// chunk was 80 KB, 1.7 MB for one declaring the most faces the resource rule allows;
+// chunk is 80 KB, 1.7 MB for one declaring the most faces the resource rule allows;
 // a uniform-coded filler level 1.6 KB per stream byte. The slack also leaves room
 // for Draco's rANS look-up tables (up to 4 MB).
 inline constexpr uint64_t kDecodeAllocSlackBytes = uint64_t{8} << 20;

@@ -302,7 +302,7 @@ StatusOr<Pass> EncodeZerotreeToBudget(const Prepared& prep, const EncodeOptions&
 }
 
 // A PSNR-target search measures every trial stream. At the meter's default
-// (1M samples per direction) that dominated the encode time; 200k samples
+// (1M samples per direction) that would dominate the encode time; 200k samples
 // spread about 0.012 dB between seeds (surface_distance.cpp), so the search
 // aims kSearchMarginDb above the target at a fifth of the cost, and only the
 // chosen stream is measured at the default count (FinishQualitySearch).

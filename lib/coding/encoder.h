@@ -31,9 +31,9 @@ namespace eqmesh {
 constexpr double kBpvTolerance = 0.03;
 
 struct EncodeOptions {
-  // Lifted by default: it measured better than the unlifted transform at every rate
-  // (0.25-4 bpv) on all five bench meshes (bench/README.md, codec log), bunny
-  // +0.8 to +1.1 dB, e.g. 57.46 against 56.32 dB at 0.25 bpv.
+  // Lifted by default: it measures better than the unlifted transform at every rate
+  // (0.25-4 bpv) on all five bench meshes, bunny +0.8 to +1.1 dB (measured:
+  // bench/log/2026-12-05-codec-notebook.md).
   bitstream::TransformId transform = bitstream::TransformId::kLifted;
   bitstream::CoderId coder = bitstream::CoderId::kEq;
   // R-D slope, dimensionless: every part of the stream minimises
@@ -51,8 +51,9 @@ struct EncodeOptions {
   // Tangential components use lambda / tangential_factor; 0 = the default for the
   // transform, DefaultTangentialFactor below. The seed paper uses 100; on our normal
   // meshes the non-normal (parametric-midpoint) vertices carry large tangential
-  // details that 100 zeroes (-5 to -14 dB at 0.5-1 bpv, session 3). Zerotree:
-  // tangential amplitude weight 1/sqrt(factor).
+  // details that 100 zeroes (bunny at 1 bpv: 61.5 dB against 67.4 with 1; measured:
+  // bench/log/2026-12-05-codec-notebook.md). Zerotree: tangential amplitude weight
+  // 1/sqrt(factor).
   double tangential_factor = 0;
   // Vertices of the original irregular mesh (the bpv denominator).
   size_t input_vertices = 0;
@@ -61,7 +62,7 @@ struct EncodeOptions {
   // Decode the final stream and measure its PSNR against *original.
   bool measure_psnr = false;
   // Code the base with Draco (streams version 1.1 decoders read) instead of the
-  // compact base chunk (format 1.2, compact_base/): bunny 0.25 bpv lost 0.5 dB to it.
+  // compact base chunk (format 1.2, compact_base/): it costs the bunny 0.5 dB at 0.25 bpv.
   bool draco_base = false;
   // EQ: context-model the tangential components (format 1.3, eq_model.h); false
   // writes the seed's iid tangential classes (1.2 chunks).
@@ -69,15 +70,10 @@ struct EncodeOptions {
   ProgressFn progress;
 };
 
-// 4 for the lifted transform, 2 for the unlifted one. Measured with the per-level
-// lambda of the EQ chunks (level_encoder.cpp; codec log in bench/README.md): 4 beat 1
-// at every point on bunny and horse, both transforms (+0.4 to +1.2 dB, zerotree +1.0 /
-// +1.1 dB at 1 bpv), and on igea lifted; but igea unlifted fell from 91.7 to 85.2 dB at
-// 4 bpv with 4 (outliers of the decoded surface, B->A Hausdorff 3.5e-3 diagonal), so
-// the unlifted transform kept 1 until session 9, when 2 measured against 1 (0.25 / 1 /
-// 4 bpv) bunny +0.06 / +0.78 / +0.07 dB, horse +0.55 / +1.10 / 0.00, skull +0.03 /
-// +0.64 / +0.24, armadillo +0.31 / +0.26 / +0.17, igea 0.00 / -0.14 (0.994 against 1.005
-// bpv) / 0.00.
+// 4 for the lifted transform, 2 for the unlifted one. With the per-level lambda of the
+// EQ chunks (level_encoder.cpp) 4 gains 0.4-1.2 dB over 1 (zerotree too), but unlifted it
+// leaves outliers on the decoded surface (igea at 4 bpv: -6.5 dB); 2 gains up to 1.1 dB
+// over 1 there without them. Measured: bench/log/2026-12-05-codec-notebook.md.
 double DefaultTangentialFactor(bitstream::TransformId transform);
 
 struct EncodeReport {

@@ -73,8 +73,8 @@ StatusOr<Candidate> ScanLevels(const SemiRegularMesh& mesh, const EncodeOptions&
                    static_cast<double>(k) / static_cast<double>(top + 1));
     if (options.target_psnr > 0 && (k < top || !some_ceiling_reaches)) {
       // A level count whose uncoded geometry misses the target cannot meet it:
-      // one measurement instead of a whole lambda search (most of a PSNR-target
-      // encode's time went to such hopeless searches at the coarse counts).
+      // one measurement instead of a whole lambda search (such hopeless searches at
+      // the coarse counts would take most of a PSNR-target encode's time).
       // When every coarser count missed, the whole remesh is measured too: a
       // target above it fails at once instead of after a futile search.
       EQMESH_ASSIGN_OR_RETURN(const double ceiling, CeilingPsnr(mesh, k, *options.original));

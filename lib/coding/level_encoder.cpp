@@ -60,11 +60,9 @@ std::vector<uint8_t> EncodeUniform(const LevelCodingParams& params, const std::v
 // larger per level coarser; closed-loop coding corrects part of it. So the chunk's
 // lambda doubles per level from the finest towards the base (one octave, code 16
 // per level; the EQ side information carries each chunk's code, the decoder needs
-// nothing else). Measured (bunny, horse: EQ lifted and unlifted, --bpv 0.25 / 1 / 4,
-// 0, 0.5, 1 and 1.5 octaves per level): 1 gained 0.6-2.7 dB at 1 and 4 bpv over a
-// single lambda and was within 0.45 dB of the best setting there; at 0.25 bpv it
-// was -0.05 to +0.9 dB (0.5 octave was up to 0.6 dB better on the bunny). Codec log
-// in bench/README.md.
+// nothing else). One octave gains 0.6-2.7 dB over a single lambda at 1 and 4 bpv and
+// stays within 0.45 dB of the best of 0-1.5 octaves there (measured:
+// bench/log/2026-12-05-codec-notebook.md).
 int32_t LevelLambdaOffset(int levels, int j) {
   return kLevelLambdaCodePerLevel * (levels - 1 - j);
 }

@@ -85,7 +85,7 @@ void SpinTeam::Work(int worker) {
 // Stop is part of the wake-up condition, not only of the answer: a helper that
 // read `seen` after the destructor's batch_ increment (it returned from its last
 // wait just before stop_ was set) would otherwise wait for a batch that never
-// comes, and the destructor's join would hang (seen once in ctest -j2, session 13).
+// comes, and the destructor's join would hang (tests/core: DestroyedRightAfterABatchNeverHangs).
 bool SpinTeam::WaitForBatch(uint64_t seen) {
   const auto ready = [&] { return stop_.load() || batch_.load(std::memory_order_acquire) != seen; };
   for (int round = 0; round < kSpinRounds; ++round) {

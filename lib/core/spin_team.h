@@ -14,9 +14,8 @@
 // A helper takes part in a batch only if it enters it before the caller has
 // finished the batch's indices itself: the caller then shuts it out (one
 // compare-and-swap on the helper's ticket decides who came first) instead of
-// waiting for it. On a loaded machine a descheduled helper used to hold up every
-// batch for a time slice: the bunny's base domain took 39 s instead of 1.3 s with
-// three busy processes on two cores (session 9).
+// waiting for it, so a helper descheduled on a loaded machine cannot hold up every
+// batch for a time slice (measured: bench/log/2026-12-05-developers-history.md).
 #pragma once
 
 #include <atomic>

@@ -113,7 +113,7 @@ Status CheckOptions(const CompareOptions& options) {
   return Status::Ok();
 }
 
-// Inputs of ordinary size are measured as they are (bit for bit as before);
+// Inputs of ordinary size are measured as they are, unscaled;
 // beyond these scales areas and squared distances would over- or underflow, so
 // they are measured at PowerOfTwoUnitScale. Returns 1 for "as they are".
 constexpr double kLargestUnscaled = 0x1p32, kSmallestUnscaled = 0x1p-32;

@@ -30,9 +30,9 @@ constexpr size_t kMaxValence = 12;
 // A collapse may not turn a face by more than ~80 degrees (no normal flips).
 constexpr double kMinNormalCos = 0.17;
 // Minimum 3D triangle quality 4*sqrt(3)*A / sum(l^2) a collapse may create,
-// unless the star already holds a worse triangle. (Halving it when the
-// simplification stalls took dragon_vrip's base from 4953 to 2379 vertices but
-// its remesh from 64.8 to 54.0 dB: the slivers cost more than the base saves.)
+// unless the star already holds a worse triangle. It stays where the simplification
+// stalls: the slivers would cost more than the smaller base saves (measured:
+// bench/log/2026-12-05-remesh-notebook.md).
 constexpr double kMinQuality = 0.08;
 // Quality floor in that division, so a degenerate fan stays finite.
 constexpr double kQualityFloor = 1e-3;
@@ -233,7 +233,7 @@ bool Simplifier::BuildRing(uint32_t v, Ring* ring) const {
   const size_t nf = fs.size();
   if (nf == 0) return false;
   // Per thread: the team re-costs rings in parallel, and a fresh pair of
-  // vectors per call was a tenth of the simplification's time in malloc/free.
+  // vectors per call would spend a tenth of the simplification's time in malloc/free.
   thread_local std::vector<uint32_t> from, to;
   from.resize(nf);
   to.resize(nf);
@@ -291,9 +291,8 @@ void Simplifier::Neighbours(uint32_t v, std::vector<uint32_t>* out) const {
 // the largest distance keeps them until they are the coarsest detail left. The
 // quality term keeps base triangles from becoming slivers along cylinders, where
 // the dyadic subdivision of an equilateral reference triangle would sample the
-// surface anisotropically. The power 3 was measured on the bench meshes (2 and 3
-// both keep every remesh above 84 dB, 3 gave fewer folds and more normal
-// vertices; error alone left slivers along ears and legs).
+// surface anisotropically. The power 3 gives fewer folds and more normal vertices
+// than 2 on the bench meshes; error alone leaves slivers along ears and legs.
 double Simplifier::CollapseCost(size_t p, const Ring& ring, double worst_quality, double bound,
                                 CostScratch* scratch) const {
   const std::vector<Vec2>& z = scratch->z;
@@ -504,7 +503,7 @@ bool Simplifier::GeometryAllows(uint32_t v, size_t p, const Ring& ring, const st
     if (q < kMinQuality && q < worst_old) return false;
   }
   // Last, once every cheap test passed: a closest-point query per wedge, on the
-  // team (a fifth of the caller's time in the simplification before, igea).
+  // team (on the caller alone it is a fifth of the simplification's time, igea).
   std::vector<uint32_t>& wedge_starts = collapse_.wedge_starts;
   wedge_starts.clear();
   for (size_t m = 0; m < wedges; ++m) {
@@ -885,17 +884,13 @@ double Simplifier::AngleSum(uint32_t v) const {
 // three wide finest faces around them; at tips (claws, ear tips) one of those
 // folds and no move unfolds it (all of armadillo's and skull's folds, and the
 // horse's ear pleat, traced back to one). Collapsing them loses the tip
-// (armadillo 86 -> 70 dB), so instead an edge opposite a tip (kTipAngleSum) is
-// flipped when that is valid (FlipValid) and leaves no interior vertex below
-// valence 4: of the valid ones, the one whose new faces carry their input
-// vertices closest. Bench meshes: folds 38 -> 6, horse 87.8 -> 91.9 dB, skull
-// +0.7, armadillo +0.2. Every flip moves the remesh a little, and not always
-// for the better: without the tip limit armadillo lost 0.9 dB and the bundled
-// blob (flipped at a flat vertex, 331 degrees) went from 32 to 332 folds; with
-// it the CAD samples lose too (fandisk 76.0 -> 72.2 dB, rocker-arm 80.1 -> 78.7).
-// The limit was 200 degrees until session 16; at 300 the horse's last fold
-// goes (a 257-degree valence-3 vertex of its base is flipped) and the fold
-// suite's bench runs go 54 -> 36 (bench/README_remesh.md).
+// (armadillo: 70 dB instead of 86), so instead an edge opposite a tip
+// (kTipAngleSum) is flipped when that is valid (FlipValid) and leaves no interior
+// vertex below valence 4: of the valid ones, the one whose new faces carry their
+// input vertices closest. Every flip moves the remesh a little, and not always for
+// the better (flat vertices fold, CAD corners lose a few dB), hence the tip
+// limit; 300 degrees keeps the fewest folds on the fold suite (measured:
+// bench/log/2026-12-05-remesh-notebook.md).
 // Departure from MAPS, which has no flips. Boundary neighbourhoods are left
 // alone (their input vertices sit exactly on base boundary edges).
 void Simplifier::RaiseValenceThree() {

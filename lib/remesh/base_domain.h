@@ -13,9 +13,9 @@
 //    sets. Its cost (base_domain.cpp, Candidates) is the largest distance an
 //    input vertex of the star would end up from its image on the new fan,
 //    divided by the cube of the fan's worst triangle quality, standing in for
-//    MAPS's area + curvature weights: quadric error (Garland & Heckbert 1997,
-//    used before) removes small protrusions first and leaves slivers along
-//    cylinders, and both cost the remesh 5-15 dB at claws, ears and legs.
+//    MAPS's area + curvature weights: quadric error (Garland & Heckbert 1997)
+//    removes small protrusions first and leaves slivers along cylinders, and
+//    both cost the remesh 5-15 dB at claws, ears and legs.
 //  * The simplification stops where the base could no longer carry the
 //    surface, not at a vertex count: a collapse is refused when an input
 //    vertex of its star would end up farther than a bound (a share of its
@@ -32,12 +32,12 @@
 //    test, quality_checks.h), nor one whose input vertices face away from it.
 //  * Interior base vertices of valence 3 at tips (their faces' angles summing
 //    to under 300°) get an opposite edge flipped when that is valid
-//    (base_domain.cpp, RaiseValenceThree): they seeded almost every fold the
-//    untangler could not remove.
+//    (base_domain.cpp, RaiseValenceThree): they seed almost every fold the
+//    untangler cannot remove.
 //  * Boundary vertices (half-disc map) collapse only along their boundary, and
 //    input boundary vertices are kept exactly on base boundary edges.
-//  * No parameter smoothing (MAPS §3.4): Tutte smoothing of the base map, tried,
-//    lost 10-60 dB (the domain has too few fixed points for it to stay fair).
+//  * No parameter smoothing (MAPS §3.4): Tutte smoothing of the base map costs
+//    10-60 dB (the domain has too few fixed points for it to stay fair).
 #pragma once
 
 #include <cstddef>

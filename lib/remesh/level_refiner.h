@@ -22,7 +22,7 @@ namespace eqmesh::remesh_internal {
 // Levels with at least this many faces per input face are refined in 3D (see
 // LevelRefiner::fine_). Measured on the bench meshes: 0.5 (the level after the
 // last one coarser than the input's half) folds 3x fewer faces than 1; 0.15
-// lost up to 20 dB where coarse levels still need the charts' protection on
+// loses up to 20 dB where coarse levels still need the charts' protection on
 // thin parts.
 inline constexpr double kFineLevelFaceRatio = 0.5;
 

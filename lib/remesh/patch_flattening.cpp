@@ -13,7 +13,7 @@ namespace eqmesh {
 namespace {
 
 // How many levels above the finest a patch may start: 3 refills at most 64
-// finest faces per fold (skull_50k: the same folds fixed with 2, 3 or 4).
+// finest faces per fold (skull_50k: 2, 3 and 4 fix the same folds).
 constexpr int kMaxLevelsUp = 3;
 // Rounds over the faces a refill changed.
 constexpr int kRounds = 3;

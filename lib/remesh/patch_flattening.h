@@ -12,7 +12,7 @@
 // is kept only when it folds fewer of all the faces around the moved vertices,
 // and only when every moved vertex stays within half a finest edge of the input
 // (a refill that leaves the surface costs more than the fold: measured on
-// skull_50k, a bound of one edge fixed 2 more folds and took 0.23 dB off the
+// skull_50k, a bound of one edge fixes 2 more folds and takes 0.23 dB off the
 // remesh, half an edge none). Parents one level above the finest are tried
 // first, then up to two levels coarser; three rounds look again at the faces
 // a refill changed. The moved vertices, and every later vertex whose prediction

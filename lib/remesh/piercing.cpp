@@ -36,12 +36,11 @@ constexpr size_t kMaxFineForwardChartFaces = 256;
 // butterfly prediction was found through an unfolding that overlaps another
 // patch (the chart's angles around a vertex of valence != 6 do not close), not
 // on the edge's own patch: FineMidpoint's surface point replaces it.
-// dragon_vrip, whose stalled base has thousands of such edges, had level-1
-// vertices 8 % of the diagonal from their edges, and the faces they spanned held
-// 90 % of the remesh's squared error (68.7 -> 74.6 dB with the bound). The
-// bench meshes reach 13.8 edge lengths at most (the bunny, level 4), and their
-// remeshes are unchanged by it; 4 and 8 cost bunny and armadillo slivers and
-// gave dragon_vrip the same PSNR (bench/README_remesh.md, session 17).
+// Without it dragon_vrip, whose stalled base has thousands of such edges, places
+// level-1 vertices 8 % of the diagonal from their edges. The bench meshes reach
+// 13.8 edge lengths at most (the bunny, level 4), so 16 leaves their remeshes as
+// they are, where 4 and 8 give them slivers (measured:
+// bench/log/2026-12-05-remesh-notebook.md).
 constexpr double kMidpointReach = 16.0;
 // Rings of input triangles around a pleat where the fold scan always searches
 // (LevelRefiner::SurelyUnfolded). With 0 the scan already decided every face of
@@ -64,9 +63,8 @@ Vec3d Midpoint(int slot) {
 
 // An input triangle's chart image must keep its orientation. One that flips was
 // unfolded inconsistently (its corners reached around a vertex of valence != 6
-// along different paths), and a parameter interpolated in it is meaningless:
-// horse, a leg vertex forward-mapped through such a triangle landed on another
-// patch and stayed a spike at every level (78 -> 94 dB once refused).
+// along different paths), and a parameter interpolated in it is meaningless
+// (on the horse it puts a leg vertex on another patch: a spike at every level).
 bool ImageIsConsistent(const Vec2 (&c)[3]) { return Orient2d(c[0], c[1], c[2]) > 0.0; }
 
 void ClampBary(Vec3d* b) {
@@ -314,9 +312,9 @@ std::optional<Vec3> LevelRefiner::ForwardMap(uint32_t root, const Vec3d& u, cons
     // The first face in breadth-first order whose input triangles contain the
     // target wins: farther faces are reached through more unfoldings, and around
     // a vertex of valence != 6 those disagree, so a far triangle can appear to
-    // contain the target with a larger margin than the right one (stanford-bunny:
-    // a base-edge midpoint placed 3 % of the diagonal away from its own patch,
-    // a spike that no finer level removed).
+    // contain the target with a larger margin than the right one (on the bunny
+    // a base-edge midpoint would land 3 % of the diagonal away from its own
+    // patch, a spike that no finer level removes).
     if (best >= -1e-9) break;
   }
   if (best > -0.5 && (best_point - near).squaredNorm() <= reach * reach) return best_point;

@@ -15,9 +15,9 @@
 //  * Hits are searched only within |t| <= kReach * edge length.
 //  * The parameterization is updated by the affine 1-to-4 split of each face at
 //    its three new points, without Guskov's Floater smoothing between levels
-//    (tried: Tutte smoothing of the input vertices inside their faces moves the
+//    (Tutte smoothing of the input vertices inside their faces moves the
 //    parameter away from the remesh vertices already placed, and the kite test
-//    then refused a quarter of the hits). The base domain's cost keeps its
+//    then refuses a quarter of the hits). The base domain's cost keeps its
 //    triangles well shaped instead (base_domain.h).
 //  * Charts are trusted only where they are consistent: an input triangle whose
 //    chart image flips is skipped, and a forward map takes the nearest face in
@@ -26,8 +26,8 @@
 //    the 3D diamond of the two level-j triangles and demoted midpoints are
 //    pierced from the 3D edge midpoint: there an input triangle spans many
 //    level-j faces and its chart image would be unfolded across all of them
-//    (bench meshes: folds 4-9x fewer, normal share 0.95 -> 0.99, no degenerate
-//    faces from failed forward maps).
+//    (bench meshes: 4-9x fewer folds, normal share 0.99 instead of 0.95, no
+//    degenerate faces from failed forward maps).
 //  * Each level's folded faces and lopsided vertices are repaired before the
 //    next level is pierced from them (placement_repair.cpp), where Guskov et
 //    al. keep the hit closest to the prediction.

@@ -18,9 +18,9 @@ constexpr int kRepairPasses = 3;
 constexpr size_t kRepairCandidates = 8;
 constexpr double kMaxLopsidedness = 0.6;
 // Slivers are mended where they are local defects: at most this share of a
-// level's faces. dragon_vrip, whose stalled base is a fifth slivers at every
-// level, lost a sixth of its normal vertices and doubled its refinement time
-// to them; the bench scans have 0.1-0.5 %.
+// level's faces. Mending every level would cost dragon_vrip, whose stalled base
+// is a fifth slivers at every level, a sixth of its normal vertices and double
+// its refinement time; the bench scans have 0.1-0.5 %.
 constexpr double kMaxSliverShare = 0.02;
 // Relaxed candidates: how far toward its neighbours' centroid a vertex moves.
 constexpr double kRelaxBlends[] = {1.0, 0.5};
@@ -76,8 +76,8 @@ uint32_t LevelRefiner::FineFace(uint32_t v) const {
 // scan's time. On levels finer than the input a face spans a fraction of an
 // input triangle, and where the input under all three corners faces its way
 // the triangle under its centroid does too, short of a pleat narrower than the
-// face. Measured: the remesh stays byte-identical on the bench meshes (see
-// bench/README_remesh.md).
+// face. Measured: the remesh stays byte-identical on the bench meshes
+// (bench/log/2026-12-05-remesh-notebook.md).
 bool LevelRefiner::SurelyUnfolded(const Face& t, const Vec3& normal) const {
   if (!fine_) return false;
   for (uint32_t v : t) {

@@ -29,8 +29,9 @@ inline double TriangleQuality(const Vec3& a, const Vec3& b, const Vec3& c) {
 // Faces of lower quality are slivers. The refinement's placement repair looks
 // for better-shaped placements of their odd vertices, because a sliver at one
 // level leaves slivers at every finer one (its corner children inherit its
-// shape), and bands of them at the finest levels are where folds sit. Chosen
-// by measurement (bench/README_remesh.md, session 15): 0.05-0.3 tried.
+// shape), and bands of them at the finest levels are where folds sit. Of 0.05-0.3,
+// 0.1 leaves the fewest folds over the bench and small meshes together (measured:
+// bench/log/2026-12-05-remesh-notebook.md).
 inline constexpr double kSliverQuality = 0.1;
 
 // Faces of `mesh` with TriangleQuality below kSliverQuality.

@@ -56,8 +56,8 @@ constexpr size_t kMinComponentVertices = 20;
 constexpr double kBaseErrorShare = 0.02;
 // ... or once this fraction of the input vertices is left, whichever comes
 // first (but never below kMinBasePerComponent per remeshed component). On dense
-// scans the bound is loose, and bases of this size remesh them best
-// (bench/README_remesh.md).
+// scans the bound is loose, and bases of this size remesh them best (measured:
+// bench/log/2026-12-05-base-bound-and-levels.md).
 constexpr double kMinBaseFraction = 0.003;
 constexpr size_t kMinBasePerComponent = 8;
 // RemeshOptions::min_psnr: how many times the base bound is halved to meet it,
@@ -413,7 +413,7 @@ StatusOr<SemiRegularMesh> Remesh(const Mesh& input, const RemeshOptions& options
     return out;
   }
   // Work at unit scale: squared lengths and areas of a 1e300-sized input would
-  // overflow (and the untangler's bounded searches then became scans of the
+  // overflow (and the untangler's bounded searches would become scans of the
   // whole input: a hang). A power of two keeps every result exact: base
   // vertices come back as the input's own, and inputs of ordinary size remesh
   // bit for bit as at their own scale.

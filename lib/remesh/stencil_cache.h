@@ -2,7 +2,7 @@
 //
 // They depend on connectivity only, so every untangling trial, the non-normal
 // marking and the patch refills can share them (igea, 1.6M vertices: the
-// untangling took 1.84 s building them per use, 0.70 s sharing them).
+// untangling takes 0.70 s sharing them, 1.84 s building them per use).
 #pragma once
 
 #include <optional>

@@ -34,18 +34,18 @@ constexpr double kErrorFloorShare = 0.05;
 // cluster is kept or undone as a whole: measured worse than widening).
 constexpr int kClusterRings[] = {2, 3, 4, 6};
 // Sweeps per cluster: Jacobi to the centroids, Gauss-Seidel to the kernel
-// centres (96 gained nothing over 48 on the bench meshes), ending after
-// kStallSweeps without fewer folds (12 was too short: armadillo 4 -> 48 folds).
+// centres (96 gain nothing over 48 on the bench meshes), ending after
+// kStallSweeps without fewer folds (12 is too short: armadillo 48 folds, not 4).
 constexpr int kClusterIterations = 8;
 constexpr int kKernelIterations = 48;
 constexpr int kStallSweeps = 24;
 // The untangler's whole budget, in fold tests per finest face: the bench meshes
-// spend 0.12-0.19, dragon_vrip (thousands of folded crevices no move unfolds)
-// spent 7.8 and doubled its remesh time. Counted, not timed, so the result
-// does not depend on the machine; past it, no more moves are tried.
+// spend 0.12-0.19, while dragon_vrip (thousands of folded crevices no move
+// unfolds) would spend 7.8 and double its remesh time. Counted, not timed, so
+// the result does not depend on the machine; past it, no more moves are tried.
 constexpr double kWorkPerFace = 1.0;
 // Larger clusters are whole folded regions (dragon_vrip's crevices), where a
-// sweep is slow and was never kept (2,048 changed nothing on the bench meshes).
+// sweep is slow and never kept (2,048 changes nothing on the bench meshes).
 constexpr size_t kMaxClusterVertices = 512;
 // Moves of coarser vertices stop short of making the remesh's normal share
 // (the remesh bar, bench/README_remesh.md) drop below this.
@@ -79,7 +79,7 @@ struct Untangler {
   // positions fails the same way, and the ring widths, level trials and
   // cleanup rounds ask again (failed repeats: skull 14 of 49 sweeps, half the
   // sweeps' time; horse 16 of 50; armadillo 16 of 107). A repeat is answered
-  // from here and charged the same work, so the budget runs out where it did.
+  // from here and charged the same work, so the budget runs out where a rerun's would.
   std::map<std::pair<std::vector<uint64_t>, bool>, size_t> failed_sweeps;
 
   Untangler(const std::vector<Face>& finest, const InputSurface& s, std::vector<Vec3>* p,

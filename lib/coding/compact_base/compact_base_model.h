@@ -16,8 +16,8 @@
 // easy to check on hostile input); manifold, consistently oriented bases only (the
 // encoder falls back to the Draco chunk for anything else).
 //
-// Why not Draco for the base: at 0.25 bits per input vertex the Draco chunk of the
-// bunny's 104-vertex base was 43 % of the stream, ~140 B of it Draco's own headers,
+// Why not Draco for the base: at 0.25 bits per input vertex a Draco chunk of the
+// bunny's 104-vertex base is 43 % of the stream, ~140 B of it Draco's own headers,
 // probability tables and connectivity for a mesh this small.
 #pragma once
 

@@ -58,7 +58,7 @@ class GgdFit {
  private:
   // sum over the values of (|x| / max_abs)^nu for every table shape (scaled against
   // overflow). The shapes are nu = 0.5 + 0.1 s, so the terms are sqrt(t) (t^0.1)^s:
-  // one pow per value instead of one per value and shape, which had been a third
+  // one pow per value instead of one per value and shape, which would be a third
   // of the encoder's time (bunny, --bpv 1).
   std::array<double, kQuantizerShapeCount> ScaledPowerSums(double max_abs) const {
     std::array<double, kQuantizerShapeCount> sums{};

@@ -43,10 +43,10 @@
 //    reconstruct to zero (or it has none), which the decoder can check itself.
 //  * The seed codes tangential components as iid per level. They are not: the
 //    non-normal vertices (a few percent) carry nearly all tangential energy, and
-//    they cluster (holes, creases, wherever piercing failed). So since 1.3 the
-//    tangential components get the EQ treatment too: a spatial context and their
-//    own predictable / unpredictable classes (measured: 1-3 % fewer bytes at 1-2
-//    bpv, BD-rate -0.6 to -3.3 % on the bench meshes; bench/README.md).
+//    they cluster (holes, creases, wherever piercing failed). So 1.3 streams give
+//    the tangential components the EQ treatment too: a spatial context and their
+//    own predictable / unpredictable classes (1-3 % fewer bytes at 1-2 bpv;
+//    measured: bench/log/2026-12-05-codec-notebook.md).
 //  * Magnitudes at or beyond the table's open bin M are escaped with an adaptive
 //    Exp-Golomb code of |q| - M (context-modelled prefix, bypass suffix) whose order
 //    k = max(0, 15 - floor(log2 step_q16)) puts 2^k near half a sigma in steps, so
