@@ -26,7 +26,8 @@ set(EQMESH_STREAM_DECODER_SOURCES
   coding/level_decoder.cpp
   coding/level_synthesis.cpp
   coding/zerotree_decoder.cpp
-  coding/decoder.cpp)
+  coding/decoder.cpp
+  coding/decoded_geometry.cpp)
 
 # The list variable `name` with every entry prefixed by `dir`/.
 function(eqmesh_sources_in dir name out)

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # The whole test suite (what .ci/run calls): installs what is missing, then
-#   1. builds (gcc, RelWithDebInfo, warnings on) and runs every GoogleTest case;
+#   1. builds (gcc, RelWithDebInfo, warnings on) and runs every GoogleTest case,
+#      then installs the package and builds the C consumer against it
+#      (scripts/test-install.sh);
 #   2. the web loader in headless Chromium (scripts/test-web.sh);
 #   3. the same GoogleTest suite built with clang -O1 under AddressSanitizer +
 #      UndefinedBehaviorSanitizer (scripts/test-sanitizers.sh); the pinned
@@ -30,6 +32,8 @@ if has_stage build; then
   BUILD_DIR="$BUILD_DIR" BUILD_TYPE="${BUILD_TYPE:-RelWithDebInfo}" \
     bash scripts/build.sh -DEQMESH_BUILD_TESTS=ON "$@"
   ctest --test-dir "$BUILD_DIR" --output-on-failure -j "$(nproc)" --timeout 900
+  stage "installed package and a C consumer"
+  BUILD_DIR="$BUILD_DIR" bash scripts/test-install.sh
 fi
 if has_stage web; then
   stage "web loader in headless Chromium"

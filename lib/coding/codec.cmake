@@ -4,11 +4,20 @@
 set(EQMESH_CODEC_DIR "${CMAKE_CURRENT_LIST_DIR}")
 
 eqmesh_sources_in(${PROJECT_SOURCE_DIR}/lib EQMESH_STREAM_DECODER_SOURCES stream_decoder_sources)
-add_library(eqmesh_decoder STATIC ${stream_decoder_sources} ${EQMESH_CODEC_DIR}/base_mesh_decoder.cpp)
-target_include_directories(eqmesh_decoder PUBLIC "${PROJECT_SOURCE_DIR}/lib")
+if(EQMESH_WITH_DRACO)
+  add_library(eqmesh_decoder STATIC ${stream_decoder_sources} ${EQMESH_CODEC_DIR}/base_mesh_decoder.cpp)
+  target_link_libraries(eqmesh_decoder PRIVATE draco::draco)
+else()
+  add_library(eqmesh_decoder STATIC ${stream_decoder_sources} ${EQMESH_CODEC_DIR}/base_mesh_decoder_no_draco.cpp)
+endif()
+target_include_directories(eqmesh_decoder PUBLIC "$<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/lib>" "$<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}/eqmesh>")
 # draco's imported targets lack Eigen's include path, so Eigen comes first via mesh.
 target_link_libraries(eqmesh_decoder PUBLIC eqmesh_eq_decoder eqmesh_zerotree eqmesh_entropy eqmesh_wavelet
-                      eqmesh_mesh Eigen3::Eigen PRIVATE draco::draco)
+                      eqmesh_mesh Eigen3::Eigen)
+
+if(NOT EQMESH_BUILD_ENCODER)
+  return()
+endif()
 
 add_library(eqmesh_encoder STATIC
   ${EQMESH_CODEC_DIR}/atlas/attach_atlas.cpp

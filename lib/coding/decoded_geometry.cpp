@@ -1,0 +1,38 @@
+#include "coding/decoded_geometry.h"
+
+#include "coding/atlas/seam_split.h"
+#include "coding/decoder.h"
+
+namespace eqmesh {
+
+std::vector<Vec3> UnitVertexNormals(const Mesh& mesh) {
+  std::vector<Vec3> normals = VertexNormals(mesh);
+  for (Vec3& n : normals) {
+    if (n.squaredNorm() == 0.0) n = Vec3::UnitZ();
+  }
+  return normals;
+}
+
+DecodedGeometry ExtractDecodedGeometry(const SemiRegularMesh& decoded, const AtlasLayout* atlas) {
+  const int level = decoded.hierarchy.levels();
+  DecodedGeometry out;
+  Mesh welded = ExtractLevel(decoded, level);
+  std::vector<Vec3> welded_normals = UnitVertexNormals(welded);
+  if (atlas == nullptr) {
+    out.mesh = std::move(welded);
+    out.normals = std::move(welded_normals);
+    return out;
+  }
+  SeamSplitMesh split = SplitLevelAtSeams(decoded, level, FaceCornerTexCoords(*atlas, AtlasFaces(decoded)));
+  out.mesh.positions.resize(split.source_vertex.size());
+  out.normals.resize(split.source_vertex.size());
+  for (size_t i = 0; i < split.source_vertex.size(); ++i) {
+    out.mesh.positions[i] = welded.positions[split.source_vertex[i]];
+    out.normals[i] = welded_normals[split.source_vertex[i]];
+  }
+  out.mesh.faces = std::move(split.faces);
+  out.texcoords = std::move(split.texcoords);
+  return out;
+}
+
+}  // namespace eqmesh
