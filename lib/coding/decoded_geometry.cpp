@@ -5,14 +5,6 @@
 
 namespace eqmesh {
 
-std::vector<Vec3> UnitVertexNormals(const Mesh& mesh) {
-  std::vector<Vec3> normals = VertexNormals(mesh);
-  for (Vec3& n : normals) {
-    if (n.squaredNorm() == 0.0) n = Vec3::UnitZ();
-  }
-  return normals;
-}
-
 DecodedGeometry ExtractDecodedGeometry(const SemiRegularMesh& decoded, const AtlasLayout* atlas) {
   const int level = decoded.hierarchy.levels();
   DecodedGeometry out;

@@ -1,7 +1,6 @@
 // What every loader makes of a decoded level (the glTF loader, the C API, the
 // WebAssembly module): positions, unit normals by ext_spec's rule
-// ("Reconstruction of normals": area-weighted over the welded level, (0, 0, 1)
-// where a vertex has no area), indices, and with an atlas the vertices split at its
+// (UnitVertexNormals over the welded level), indices, and with an atlas the vertices split at its
 // seams with TEXCOORD_0 (ext_spec B.7).
 #pragma once
 
@@ -18,9 +17,6 @@ struct DecodedGeometry {
   std::vector<Vec3> normals;                    // unit, per vertex of mesh
   std::vector<std::array<float, 2>> texcoords;  // per vertex of mesh; empty without an atlas
 };
-
-// The spec's normal rule on `mesh`.
-std::vector<Vec3> UnitVertexNormals(const Mesh& mesh);
 
 // The finest decoded level of `decoded` (kept components appended); `atlas` null
 // for a stream without one.

@@ -238,14 +238,6 @@ StatusOr<Mesh> ReadTrianglePrimitive(const tinygltf::Model& model, const tinyglt
   return mesh;
 }
 
-std::vector<Vec3> UnitVertexNormals(const Mesh& mesh) {
-  std::vector<Vec3> normals = VertexNormals(mesh);
-  for (Vec3& n : normals) {
-    if (n.squaredNorm() == 0.0) n = Vec3::UnitZ();
-  }
-  return normals;
-}
-
 namespace {
 
 std::vector<uint8_t> Vec2Bytes(const std::vector<std::array<float, 2>>& values) {

@@ -39,9 +39,6 @@ StatusOr<std::vector<uint32_t>> ReadIndexAccessor(const tinygltf::Model& model, 
 // indices when it has none). Vertices are kept as stored, unreferenced ones included.
 StatusOr<Mesh> ReadTrianglePrimitive(const tinygltf::Model& model, const tinygltf::Primitive& primitive);
 
-// The spec's NORMAL rule: area-weighted vertex normals, (0, 0, 1) where undefined.
-std::vector<Vec3> UnitVertexNormals(const Mesh& mesh);
-
 // Accessor indices a compressed or decoded primitive's geometry lives in.
 struct GeometryAccessors {
   int position = -1;

@@ -1,11 +1,9 @@
 #include "gltf/stream_decoder.h"
 
 #if EQMESH_HAVE_DECODER
-#include "coding/atlas/seam_split.h"
+#include "coding/decoded_geometry.h"
 #include "coding/decoder.h"
 #endif
-
-#include "gltf/accessor_io.h"
 
 namespace eqmesh::gltf {
 
@@ -20,22 +18,6 @@ std::vector<uint64_t> ChunkLengths(const StreamInfo& info) {
   return lengths;
 }
 
-// The welded level's normals (the spec's rule) follow each vertex to its copies.
-void SetSplitGeometry(const SemiRegularMesh& decoded, const AtlasLayout& atlas, DecodedStream* out) {
-  const int level = decoded.hierarchy.levels();
-  const Mesh welded = ExtractLevel(decoded, level);
-  const std::vector<Vec3> welded_normals = UnitVertexNormals(welded);
-  SeamSplitMesh split = SplitLevelAtSeams(decoded, level, FaceCornerTexCoords(atlas, AtlasFaces(decoded)));
-  out->mesh.positions.resize(split.source_vertex.size());
-  out->normals.resize(split.source_vertex.size());
-  for (size_t i = 0; i < split.source_vertex.size(); ++i) {
-    out->mesh.positions[i] = welded.positions[split.source_vertex[i]];
-    out->normals[i] = welded_normals[split.source_vertex[i]];
-  }
-  out->mesh.faces = std::move(split.faces);
-  out->texcoords = std::move(split.texcoords);
-}
-
 }  // namespace
 
 StreamDecoderFn EqmeshStreamDecoder() {
@@ -48,12 +30,10 @@ StreamDecoderFn EqmeshStreamDecoder() {
     DecodedStream out;
     EQMESH_ASSIGN_OR_RETURN(const SemiRegularMesh decoded, DecodeSemiRegular(data, size, options, &info));
     EQMESH_ASSIGN_OR_RETURN(const std::optional<AtlasLayout> atlas, DecodeAtlas(data, size, decoded));
-    if (atlas) {
-      SetSplitGeometry(decoded, *atlas, &out);
-    } else {
-      out.mesh = ExtractLevel(decoded, decoded.hierarchy.levels());
-      out.normals = UnitVertexNormals(out.mesh);
-    }
+    DecodedGeometry geometry = ExtractDecodedGeometry(decoded, atlas ? &*atlas : nullptr);
+    out.mesh = std::move(geometry.mesh);
+    out.normals = std::move(geometry.normals);
+    out.texcoords = std::move(geometry.texcoords);
     out.stream_levels = info.levels_in_stream;
     out.level_decoded = info.levels_decoded;
     out.chunk_lengths = ChunkLengths(info.stream);

@@ -110,6 +110,14 @@ std::vector<Vec3> VertexNormals(const std::vector<Face>& faces, size_t num_verti
   return normals;
 }
 
+std::vector<Vec3> UnitVertexNormals(const Mesh& mesh) {
+  std::vector<Vec3> normals = VertexNormals(mesh);
+  for (Vec3& n : normals) {
+    if (n.squaredNorm() == 0.0) n = Vec3::UnitZ();
+  }
+  return normals;
+}
+
 std::vector<Vec3> FaceCrossProducts(const Mesh& mesh) {
   std::vector<Vec3> out;
   out.reserve(mesh.faces.size());

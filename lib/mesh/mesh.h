@@ -59,6 +59,9 @@ size_t CountReferencedVertices(const Mesh& mesh);
 
 // Area-weighted vertex normals (zero vector for isolated or degenerate fans).
 std::vector<Vec3> VertexNormals(const Mesh& mesh);
+// ext_spec's "Reconstruction of normals": VertexNormals, with (0, 0, 1) where a
+// vertex has no area around it.
+std::vector<Vec3> UnitVertexNormals(const Mesh& mesh);
 // The same over `faces` for vertices [0, num_vertices) of `positions`: ext_spec's
 // normative rule (the wavelet frames' F1), whose order of operations (face cross
 // products summed in face order, then n / |n|) a decoder must keep.

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "coding/atlas/seam_split.h"
+#include "coding/decoded_geometry.h"
 #include "coding/decoder.h"
 #include "mesh/mesh.h"
 
@@ -45,53 +45,21 @@ void SetLayout(const eqmesh::StreamInfo& s, EqmResult* r) {
   for (uint64_t size : s.level_sizes) r->chunk_lengths.push_back(static_cast<double>(size));
 }
 
-// ext_spec "Reconstruction of normals": area-weighted, (0, 0, 1) for empty fans.
-std::vector<float> UnitNormals(const eqmesh::Mesh& mesh) {
-  const std::vector<eqmesh::Vec3> sums = eqmesh::VertexNormals(mesh);
-  std::vector<float> out(sums.size() * 3);
-  for (size_t i = 0; i < sums.size(); ++i) {
-    const double length = sums[i].norm();
-    const eqmesh::Vec3 n = length > 0 ? eqmesh::Vec3(sums[i] / length) : eqmesh::Vec3(0, 0, 1);
-    for (int c = 0; c < 3; ++c) out[3 * i + c] = static_cast<float>(n[c]);
-  }
-  return out;
-}
-
-void SetGeometry(const eqmesh::Mesh& mesh, EqmResult* r) {
-  r->positions.resize(mesh.positions.size() * 3);
-  for (size_t i = 0; i < mesh.positions.size(); ++i) {
-    for (int c = 0; c < 3; ++c) r->positions[3 * i + c] = static_cast<float>(mesh.positions[i][c]);
-  }
-  r->normals = UnitNormals(mesh);
-  r->indices.resize(mesh.faces.size() * 3);
-  for (size_t f = 0; f < mesh.faces.size(); ++f) {
-    for (int c = 0; c < 3; ++c) r->indices[3 * f + c] = mesh.faces[f][c];
-  }
-}
-
-// The atlas's seams split vertices; positions and normals follow each copy from
-// the welded level (ext_spec B.7).
-void SetSplitGeometry(const eqmesh::SemiRegularMesh& decoded, const eqmesh::AtlasLayout& atlas, EqmResult* r) {
-  const eqmesh::Mesh welded = eqmesh::ExtractLevel(decoded, decoded.hierarchy.levels());
-  const std::vector<float> welded_normals = UnitNormals(welded);
-  const eqmesh::SeamSplitMesh split = eqmesh::SplitLevelAtSeams(
-      decoded, decoded.hierarchy.levels(), eqmesh::FaceCornerTexCoords(atlas, eqmesh::AtlasFaces(decoded)));
-  const size_t n = split.source_vertex.size();
+void SetGeometry(const eqmesh::DecodedGeometry& g, EqmResult* r) {
+  const size_t n = g.mesh.positions.size();
   r->positions.resize(n * 3);
   r->normals.resize(n * 3);
-  r->texcoords.resize(n * 2);
   for (size_t i = 0; i < n; ++i) {
-    const uint32_t v = split.source_vertex[i];
     for (int c = 0; c < 3; ++c) {
-      r->positions[3 * i + c] = static_cast<float>(welded.positions[v][c]);
-      r->normals[3 * i + c] = welded_normals[3 * v + c];
+      r->positions[3 * i + c] = static_cast<float>(g.mesh.positions[i][c]);
+      r->normals[3 * i + c] = static_cast<float>(g.normals[i][c]);
     }
-    r->texcoords[2 * i] = split.texcoords[i][0];
-    r->texcoords[2 * i + 1] = split.texcoords[i][1];
   }
-  r->indices.resize(split.faces.size() * 3);
-  for (size_t f = 0; f < split.faces.size(); ++f) {
-    for (int c = 0; c < 3; ++c) r->indices[3 * f + c] = split.faces[f][c];
+  r->texcoords.clear();
+  for (const auto& t : g.texcoords) r->texcoords.insert(r->texcoords.end(), {t[0], t[1]});
+  r->indices.resize(g.mesh.faces.size() * 3);
+  for (size_t f = 0; f < g.mesh.faces.size(); ++f) {
+    for (int c = 0; c < 3; ++c) r->indices[3 * f + c] = g.mesh.faces[f][c];
   }
 }
 
@@ -113,11 +81,7 @@ EMSCRIPTEN_KEEPALIVE EqmResult* eqm_decode(const uint8_t* data, uint32_t size, i
   auto* r = new EqmResult;
   SetLayout(info.stream, r);
   r->level_decoded = info.levels_decoded;
-  if (atlas->has_value()) {
-    SetSplitGeometry(*decoded, **atlas, r);
-  } else {
-    SetGeometry(eqmesh::ExtractLevel(*decoded, decoded->hierarchy.levels()), r);
-  }
+  SetGeometry(eqmesh::ExtractDecodedGeometry(*decoded, atlas->has_value() ? &**atlas : nullptr), r);
   return r;
 }
 
