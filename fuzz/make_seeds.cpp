@@ -151,7 +151,7 @@ void WriteGltfSeeds(const fs::path& dir) {
     for (const bool fallback : {false, true}) {
       tinygltf::Model model =
           OrDie(gltf::ReadGltfModelFromBytes(OrDie(WriteMeshToBytes(plain, "glb"), "glb"), "seed.glb"), "model");
-      gltf::GeometryCompressor compressor = [&](const Mesh&, const std::string&) -> StatusOr<gltf::CompressedGeometry> {
+      gltf::GeometryCompressor compressor = [&](const gltf::PrimitiveGeometry&, const std::string&) -> StatusOr<gltf::CompressedGeometry> {
         gltf::CompressedGeometry g;
         g.stream = stream;
         g.chunk_lengths = decoded.chunk_lengths;
