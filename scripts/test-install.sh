@@ -24,7 +24,7 @@ grep -q "one call: level [0-9]*, [0-9]* vertices, \([0-9]\|[0-9][0-9]\|[0-9][0-9
 
 # The decoder alone.
 ALONE="$BUILD_DIR/decoder-only"
-cmake -S . -B "$ALONE" -G Ninja -DEQMESH_BUILD_ENCODER=OFF -DEQMESH_BUILD_TOOLS=OFF -DEQMESH_BUILD_TESTS=OFF \
+cmake -S . -B "$ALONE" -G Ninja -DCMAKE_BUILD_TYPE=Debug -DEQMESH_BUILD_ENCODER=OFF -DEQMESH_BUILD_TOOLS=OFF -DEQMESH_BUILD_TESTS=OFF \
   -DEQMESH_WITH_DRACO=OFF >/dev/null
 cmake --build "$ALONE" -j "${JOBS:-2}" >/dev/null
 rm -rf "$ALONE/install" "$ALONE/consumer"
