@@ -1,7 +1,6 @@
 #include "coding/decoded_geometry.h"
 
 #include "coding/atlas/seam_split.h"
-#include "coding/decoder.h"
 
 namespace eqmesh {
 
@@ -25,6 +24,13 @@ DecodedGeometry ExtractDecodedGeometry(const SemiRegularMesh& decoded, const Atl
   out.mesh.faces = std::move(split.faces);
   out.texcoords = std::move(split.texcoords);
   return out;
+}
+
+StatusOr<DecodedGeometry> DecodeGeometry(const uint8_t* data, size_t size, const DecodeOptions& options,
+                                         DecodeInfo* info) {
+  EQMESH_ASSIGN_OR_RETURN(const SemiRegularMesh decoded, DecodeSemiRegular(data, size, options, info));
+  EQMESH_ASSIGN_OR_RETURN(const std::optional<AtlasLayout> atlas, DecodeAtlas(data, size, decoded));
+  return ExtractDecodedGeometry(decoded, atlas ? &*atlas : nullptr);
 }
 
 }  // namespace eqmesh

@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "coding/atlas/atlas_layout.h"
+#include "coding/decoder.h"
+#include "core/status.h"
 #include "mesh/semi_regular.h"
 
 namespace eqmesh {
@@ -21,5 +23,10 @@ struct DecodedGeometry {
 // The finest decoded level of `decoded` (kept components appended); `atlas` null
 // for a stream without one.
 DecodedGeometry ExtractDecodedGeometry(const SemiRegularMesh& decoded, const AtlasLayout* atlas);
+
+// DecodeSemiRegular, DecodeAtlas and ExtractDecodedGeometry in one: what a loader
+// makes of `size` bytes of a stream.
+StatusOr<DecodedGeometry> DecodeGeometry(const uint8_t* data, size_t size, const DecodeOptions& options,
+                                         DecodeInfo* info);
 
 }  // namespace eqmesh

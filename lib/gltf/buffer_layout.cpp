@@ -185,4 +185,19 @@ Status MergeBuffers(tinygltf::Model* model) {
   return Status::Ok();
 }
 
+StatusOr<const uint8_t*> BufferViewData(const tinygltf::Model& model, int view_index, const std::string& what) {
+  if (view_index < 0 || static_cast<size_t>(view_index) >= model.bufferViews.size()) {
+    return ParseError(what + " " + std::to_string(view_index) + " does not exist");
+  }
+  const tinygltf::BufferView& view = model.bufferViews[static_cast<size_t>(view_index)];
+  if (view.buffer < 0 || static_cast<size_t>(view.buffer) >= model.buffers.size()) {
+    return ParseError(what + " refers to a missing buffer");
+  }
+  const std::vector<unsigned char>& data = model.buffers[static_cast<size_t>(view.buffer)].data;
+  if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset) {
+    return ParseError(what + " extends past the end of its buffer");
+  }
+  return data.data() + view.byteOffset;
+}
+
 }  // namespace eqmesh::gltf

@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <set>
+#include <string>
 
 #include <tiny_gltf.h>
 
@@ -20,6 +21,10 @@ namespace eqmesh::gltf {
 // which satisfies every glTF component alignment, as a new buffer view with
 // `target` (0 for none). Returns the buffer view index.
 int AppendBufferView(tinygltf::Model* model, const uint8_t* data, size_t size, int target);
+
+// The bytes of buffer view `view` ([first, first + byteLength)), proven to lie
+// inside its buffer; `what` ("the stream's bufferView") names it in errors.
+StatusOr<const uint8_t*> BufferViewData(const tinygltf::Model& model, int view, const std::string& what);
 
 // Removes candidate accessors, then candidate buffer views, that nothing references
 // any more, renumbering every reference we know of (primitives, morph targets,

@@ -18,17 +18,9 @@ std::string PrimitiveName(size_t mesh, size_t primitive) {
 // The stream bytes a level needs, proven to lie inside the buffer.
 StatusOr<std::vector<uint8_t>> StreamPrefix(const tinygltf::Model& model, const NormalMeshExtension& ext,
                                             int level) {
-  const tinygltf::BufferView& view = model.bufferViews[static_cast<size_t>(ext.buffer_view)];
-  if (view.buffer < 0 || static_cast<size_t>(view.buffer) >= model.buffers.size()) {
-    return ParseError("the stream's bufferView refers to a missing buffer");
-  }
-  const std::vector<unsigned char>& data = model.buffers[static_cast<size_t>(view.buffer)].data;
-  if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset) {
-    return ParseError("the stream's bufferView extends past the end of its buffer");
-  }
+  EQMESH_ASSIGN_OR_RETURN(const uint8_t* first, BufferViewData(model, ext.buffer_view, "the stream's bufferView"));
   const uint64_t size = ext.level_ranges[static_cast<size_t>(level)].end();
-  const auto first = data.begin() + static_cast<std::ptrdiff_t>(view.byteOffset);
-  return std::vector<uint8_t>(first, first + static_cast<std::ptrdiff_t>(size));
+  return std::vector<uint8_t>(first, first + size);
 }
 
 // Rules 10 (the coder half) and 11: the stream header restates the JSON.

@@ -4,6 +4,7 @@
 #include <map>
 
 #include "core/status.h"
+#include "gltf/buffer_layout.h"
 
 namespace eqmesh::gltf {
 namespace {
@@ -191,15 +192,9 @@ StatusOr<std::vector<uint8_t>> ImageBytes(const tinygltf::Model& model, int i) {
     if (image.image.empty()) return ParseError("image " + std::to_string(i) + " has no data");
     return std::vector<uint8_t>(image.image.begin(), image.image.end());
   }
-  if (static_cast<size_t>(image.bufferView) >= model.bufferViews.size()) return ParseError("image view missing");
-  const tinygltf::BufferView& view = model.bufferViews[static_cast<size_t>(image.bufferView)];
-  if (view.buffer < 0 || static_cast<size_t>(view.buffer) >= model.buffers.size()) return ParseError("image buffer missing");
-  const std::vector<unsigned char>& data = model.buffers[static_cast<size_t>(view.buffer)].data;
-  if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset) {
-    return ParseError("image " + std::to_string(i) + " extends past its buffer");
-  }
-  const auto first = data.begin() + static_cast<std::ptrdiff_t>(view.byteOffset);
-  return std::vector<uint8_t>(first, first + static_cast<std::ptrdiff_t>(view.byteLength));
+  EQMESH_ASSIGN_OR_RETURN(const uint8_t* first,
+                          BufferViewData(model, image.bufferView, "image " + std::to_string(i) + "'s bufferView"));
+  return std::vector<uint8_t>(first, first + model.bufferViews[static_cast<size_t>(image.bufferView)].byteLength);
 }
 
 void RemoveUnusedMaterials(tinygltf::Model* model, std::set<int>* stale_views) {

@@ -28,9 +28,7 @@ StreamDecoderFn EqmeshStreamDecoder() {
     options.allow_truncated = max_level >= 0;
     DecodeInfo info;
     DecodedStream out;
-    EQMESH_ASSIGN_OR_RETURN(const SemiRegularMesh decoded, DecodeSemiRegular(data, size, options, &info));
-    EQMESH_ASSIGN_OR_RETURN(const std::optional<AtlasLayout> atlas, DecodeAtlas(data, size, decoded));
-    DecodedGeometry geometry = ExtractDecodedGeometry(decoded, atlas ? &*atlas : nullptr);
+    EQMESH_ASSIGN_OR_RETURN(DecodedGeometry geometry, DecodeGeometry(data, size, options, &info));
     out.mesh = std::move(geometry.mesh);
     out.normals = std::move(geometry.normals);
     out.texcoords = std::move(geometry.texcoords);

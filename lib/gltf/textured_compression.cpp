@@ -6,10 +6,10 @@
 #include <map>
 
 #include "coding/atlas/attach_atlas.h"
+#include "coding/decoded_geometry.h"
 #include "coding/decoder.h"
 #include "gltf/stream_decoder.h"
 #include "texture/atlas_builder.h"
-#include "gltf/accessor_io.h"
 #include "texture/image_codec.h"
 #include "texture/tangent_frames.h"
 #include "texture/texture_transfer.h"
@@ -88,12 +88,14 @@ DecodedFrames FramesOfDecoded(const CompressedGeometry& out) {
   return f;
 }
 
-Status UseTexturedDecode(CompressedGeometry* out) {
+// What a loader decodes from the stream with its atlas: the atlas changes no level
+// chunk, so the stream decoded before it was attached, split at the atlas's seams.
+Status UseTexturedDecode(const SemiRegularMesh& decoded, const AtlasLayout& atlas, CompressedGeometry* out) {
   EQMESH_ASSIGN_OR_RETURN(out->chunk_lengths, EqmeshStreamLayout()(out->stream.data(), out->stream.size()));
-  EQMESH_ASSIGN_OR_RETURN(DecodedStream decoded, EqmeshStreamDecoder()(out->stream.data(), out->stream.size(), -1));
-  out->decoded = std::move(decoded.mesh);
-  out->normals = std::move(decoded.normals);
-  out->texcoords = std::move(decoded.texcoords);
+  DecodedGeometry geometry = ExtractDecodedGeometry(decoded, &atlas);
+  out->decoded = std::move(geometry.mesh);
+  out->normals = std::move(geometry.normals);
+  out->texcoords = std::move(geometry.texcoords);
   return Status::Ok();
 }
 
@@ -146,7 +148,7 @@ Status AddAtlasAndTextures(const PrimitiveGeometry& input, uint32_t texture_size
   EQMESH_ASSIGN_OR_RETURN(const AtlasLayout atlas,
                           texture::BuildAtlas(decoded, {grid_w, grid_h, GutterFor(grid_w, grid_h)}));
   EQMESH_ASSIGN_OR_RETURN(out->stream, AttachAtlas(out->stream, atlas));
-  EQMESH_RETURN_IF_ERROR(UseTexturedDecode(out));
+  EQMESH_RETURN_IF_ERROR(UseTexturedDecode(decoded, atlas, out));
   const texture::TexturedInput textured{&input.mesh, &input.texcoords};
   std::map<std::pair<uint32_t, uint32_t>, texture::TexelMap> maps;
   const bool any_normal_map = std::any_of(input.textures.begin(), input.textures.end(),

@@ -74,14 +74,12 @@ EMSCRIPTEN_KEEPALIVE EqmResult* eqm_decode(const uint8_t* data, uint32_t size, i
   options.max_level = max_level;
   options.allow_truncated = max_level >= 0;
   eqmesh::DecodeInfo info;
-  eqmesh::StatusOr<eqmesh::SemiRegularMesh> decoded = eqmesh::DecodeSemiRegular(data, size, options, &info);
-  if (!decoded.ok()) return Failure(decoded.status());
-  eqmesh::StatusOr<std::optional<eqmesh::AtlasLayout>> atlas = eqmesh::DecodeAtlas(data, size, *decoded);
-  if (!atlas.ok()) return Failure(atlas.status());
+  eqmesh::StatusOr<eqmesh::DecodedGeometry> geometry = eqmesh::DecodeGeometry(data, size, options, &info);
+  if (!geometry.ok()) return Failure(geometry.status());
   auto* r = new EqmResult;
   SetLayout(info.stream, r);
   r->level_decoded = info.levels_decoded;
-  SetGeometry(eqmesh::ExtractDecodedGeometry(*decoded, atlas->has_value() ? &**atlas : nullptr), r);
+  SetGeometry(*geometry, r);
   return r;
 }
 
