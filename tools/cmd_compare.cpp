@@ -53,11 +53,7 @@ StatusOr<Mesh> LoadForCompare(const std::string& path) {
 
 bool IsGltfPath(std::string path) {
   for (char& c : path) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  for (const char* suffix : {".glb", ".gltf"}) {
-    const std::string s = suffix;
-    if (path.size() >= s.size() && path.compare(path.size() - s.size(), s.size(), s) == 0) return true;
-  }
-  return false;
+  return EndsWith(path, ".glb") || EndsWith(path, ".gltf");
 }
 
 StatusOr<gltf::ColoredScene> LoadColored(const std::string& path) {
