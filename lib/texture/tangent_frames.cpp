@@ -3,16 +3,6 @@
 #include <cmath>
 
 namespace eqmesh::texture {
-namespace {
-
-// A unit vector orthogonal to n (for degenerate tangents).
-Vec3 AnyOrthogonal(const Vec3& n) {
-  const Vec3 axis = std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
-  return n.cross(axis).normalized();
-}
-
-}  // namespace
-
 std::vector<Vec4> VertexTangents(const Mesh& mesh, const std::vector<std::array<double, 2>>& texcoords,
                                  const std::vector<Vec3>& normals) {
   std::vector<Vec3> tan(mesh.positions.size(), Vec3::Zero()), bit(mesh.positions.size(), Vec3::Zero());
@@ -36,7 +26,7 @@ std::vector<Vec4> VertexTangents(const Mesh& mesh, const std::vector<std::array<
   for (size_t v = 0; v < out.size(); ++v) {
     const Vec3& n = normals[v];
     Vec3 t = tan[v] - n * n.dot(tan[v]);
-    t = t.squaredNorm() > 0 ? t.normalized() : AnyOrthogonal(n);
+    t = t.squaredNorm() > 0 ? t.normalized() : n.unitOrthogonal();
     const double w = n.cross(t).dot(bit[v]) < 0.0 ? -1.0 : 1.0;
     out[v] = Vec4(t.x(), t.y(), t.z(), w);
   }
@@ -55,7 +45,7 @@ Frame FrameAt(const Mesh& mesh, const std::vector<Vec4>& tangents, const std::ve
   }
   n = n.squaredNorm() > 0 ? n.normalized() : Vec3::UnitZ();
   t -= n * n.dot(t);
-  t = t.squaredNorm() > 0 ? t.normalized() : AnyOrthogonal(n);
+  t = t.squaredNorm() > 0 ? t.normalized() : n.unitOrthogonal();
   return {t, (w < 0 ? -1.0 : 1.0) * n.cross(t), n};
 }
 
