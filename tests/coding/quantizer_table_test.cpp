@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <functional>
 
 #include "coding/entropy/dead_zone_quantizer.h"
@@ -160,6 +161,64 @@ TEST(QuantizerTable, RegenerationMatchesCommittedTables) {
       for (int k = 0; k < e.max_index; ++k) EXPECT_EQ(e.recon_offset[k], d.recon_offset[k]);
     }
   }
+}
+
+// FNV-1a 64 of every entry as GetQuantizer returns it (step, dead zone, M, the M + 1
+// frequencies, the M reconstruction offsets; a code-nothing entry as 0, 0, 0; each value
+// as 8 little-endian bytes), pinned from the plain arrays committed before the tables
+// were packed: unpacking must give back exactly those numbers.
+TEST(QuantizerTable, UnpackedTablesMatchChecksumOfPlainTables) {
+  uint64_t hash = 14695981039346656037ull;
+  auto mix = [&hash](int64_t v) {
+    for (int i = 0; i < 8; ++i) {
+      hash ^= (static_cast<uint64_t>(v) >> (8 * i)) & 0xff;
+      hash *= 1099511628211ull;
+    }
+  };
+  int coded = 0;
+  int64_t freq_count = 0, recon_count = 0;
+  for (int s = 0; s < kQuantizerShapeCount; ++s) {
+    for (int b = 0; b < kQuantizerBucketCount; ++b) {
+      const QuantizerEntry& e = GetQuantizer(s, b);
+      mix(e.step_q16);
+      mix(e.dead_zone_q16);
+      mix(e.max_index);
+      if (e.codes_nothing()) continue;
+      ++coded;
+      for (int k = 0; k <= e.max_index; ++k) mix(e.freq[k]);
+      for (int k = 0; k < e.max_index; ++k) mix(e.recon_offset[k]);
+      freq_count += e.max_index + 1;
+      recon_count += e.max_index;
+    }
+  }
+  EXPECT_EQ(coded, 1721);
+  EXPECT_EQ(freq_count, 76704);
+  EXPECT_EQ(recon_count, 74983);
+  EXPECT_EQ(hash, 0xf285ba1e20da27f1ull);
+
+  const QuantizerEntry& first = GetQuantizer(0, 0);
+  EXPECT_EQ(first.step_q16, 524288);
+  EXPECT_EQ(first.dead_zone_q16, 1015808);
+  ASSERT_EQ(first.max_index, 3);
+  EXPECT_EQ(first.freq[0], 32765);
+  EXPECT_EQ(first.freq[3], 1);
+  EXPECT_EQ(first.recon_offset[0], 145169);
+  EXPECT_EQ(first.recon_offset[2], 171484);
+  const QuantizerEntry& mid = GetQuantizer(3, 60);
+  EXPECT_EQ(mid.step_q16, 4096);
+  EXPECT_EQ(mid.dead_zone_q16, 2048);
+  ASSERT_EQ(mid.max_index, 64);
+  EXPECT_EQ(mid.freq[1], 3264);
+  EXPECT_EQ(mid.freq[64], 198);
+  EXPECT_EQ(mid.recon_offset[63], 2024);
+  const QuantizerEntry& last = GetQuantizer(15, kQuantizerBucketCount - 1);
+  EXPECT_EQ(last.step_q16, 45);
+  EXPECT_EQ(last.dead_zone_q16, 22);
+  ASSERT_EQ(last.max_index, 64);
+  EXPECT_EQ(last.freq[0], 9);
+  EXPECT_EQ(last.freq[64], 31625);
+  EXPECT_EQ(last.recon_offset[0], 22);
+  EXPECT_TRUE(GetQuantizer(7, 0).codes_nothing());
 }
 
 TEST(QuantizerTable, BucketLookupIsIntegerAndClamped) {
