@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "coding/atlas/atlas_layout.h"
 #include "coding/base_mesh_decoder.h"
@@ -97,13 +98,12 @@ Status DecodeLevels(const uint8_t* data, const StreamInfo& s, const StreamHeader
   for (int j = 0; j < levels; ++j) {
     const Status refined = mesh->hierarchy.Refine(bitstream::kMaxFinestFaces);
     if (!refined.ok()) return refined.WithContext("eqm base mesh chunk");
-    const LevelSynthesis step(mesh->hierarchy, j, h.transform);
-    const std::vector<LocalFrame> frames = step.Frames(mesh->positions);
     EQMESH_ASSIGN_OR_RETURN(std::vector<Vec3> local,
                             DecodeLevelCoefficients(params, mesh->hierarchy, j,
                                                     data + s.level_offsets[j], static_cast<size_t>(s.level_sizes[j])));
+    const LevelSynthesis step(mesh->hierarchy, j, h.transform);
     std::vector<Vec3> fine;
-    EQMESH_RETURN_IF_ERROR(step.Synthesize(mesh->positions, frames, local, &fine));
+    EQMESH_RETURN_IF_ERROR(step.Synthesize(mesh->positions, local, &fine));
     EQMESH_RETURN_IF_ERROR(CheckFiniteLevel(fine, j + 1));
     mesh->positions = std::move(fine);
   }
@@ -175,7 +175,8 @@ std::vector<Face> AtlasFaces(const SemiRegularMesh& mesh) {
 StatusOr<Mesh> Decode(const uint8_t* data, size_t size, const DecodeOptions& options,
                       DecodeInfo* info) {
   EQMESH_ASSIGN_OR_RETURN(SemiRegularMesh mesh, DecodeSemiRegular(data, size, options, info));
-  return ExtractLevel(mesh, mesh.hierarchy.levels());
+  const int level = mesh.hierarchy.levels();
+  return ExtractLevel(std::move(mesh), level);
 }
 
 }  // namespace eqmesh

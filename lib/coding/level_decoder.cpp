@@ -70,6 +70,10 @@ StatusOr<std::vector<Vec3>> DecodeEqCoefficients(const LevelCodingParams& params
                                        : "declares " + std::to_string(declared) + " coefficients, the level has " +
                                              std::to_string(hierarchy.NumOddVertices(j))));
   }
+  const uint32_t count = hierarchy.NumOddVertices(j);
+  auto empty = EqLevelCodesNothing(data, size, count, params.tangential_context, j);
+  if (!empty.ok()) return empty.status().WithContext("eqm level chunk " + std::to_string(j));
+  if (*empty) return std::vector<Vec3>();
   EQMESH_ASSIGN_OR_RETURN(EqLevelLayout layout, BuildEqLevelLayout(hierarchy, j));
   auto local = DecodeEqLevel(layout, data, size, params.quantum, params.tangential_context);
   if (!local.ok()) return local.status().WithContext("eqm level chunk " + std::to_string(j));

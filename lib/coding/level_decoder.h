@@ -36,7 +36,9 @@ struct LevelCodingParams {
 double UniformStep(const LevelCodingParams& params, bool tangential);
 
 // Decodes the coefficients of refinement j -> j+1 (NumOddVertices(j) entries, each
-// (normal, tangent, bitangent) in world units along the local frame).
+// (normal, tangent, bitangent) in world units along the local frame), or an empty
+// vector when the chunk makes every coefficient zero (a fine level at a low rate:
+// no layout is built and nothing is allocated for it).
 StatusOr<std::vector<Vec3>> DecodeLevelCoefficients(const LevelCodingParams& params,
                                                     const SemiRegularHierarchy& hierarchy, int j,
                                                     const uint8_t* data, size_t size);

@@ -33,6 +33,11 @@ class LevelSynthesis {
   // Level j+1 values from level-j coarse values, the frames and the local details.
   Status Synthesize(const std::vector<Vec3>& coarse, const std::vector<LocalFrame>& frames,
                     const std::vector<Vec3>& local, std::vector<Vec3>* fine) const;
+  // Same result, the frames computed from `coarse` only for the odd vertices whose
+  // local detail is non-zero: a zero detail is zero in any frame, and most of a
+  // fine level's details quantize to zero. An empty `local` means all zero.
+  Status Synthesize(const std::vector<Vec3>& coarse, const std::vector<Vec3>& local,
+                    std::vector<Vec3>* fine) const;
 
  private:
   RefinementStep step_;

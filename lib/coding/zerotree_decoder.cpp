@@ -62,9 +62,8 @@ Status DecodeZerotreeLevels(const uint8_t* data, size_t size, const StreamInfo& 
   }
   for (int j = 0; j < levels; ++j) {
     const LevelSynthesis step(mesh->hierarchy, j, h.transform);
-    const std::vector<LocalFrame> frames = step.Frames(mesh->positions);
     std::vector<Vec3> fine;
-    EQMESH_RETURN_IF_ERROR(step.Synthesize(mesh->positions, frames, (*coeffs)[j], &fine));
+    EQMESH_RETURN_IF_ERROR(step.Synthesize(mesh->positions, (*coeffs)[j], &fine));
     EQMESH_RETURN_IF_ERROR(CheckFiniteLevel(fine, j + 1));
     mesh->positions = std::move(fine);
   }

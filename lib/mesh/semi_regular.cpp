@@ -1,42 +1,73 @@
 #include "mesh/semi_regular.h"
 
 #include <algorithm>
-#include <unordered_map>
 
 namespace eqmesh {
 namespace {
 
-uint64_t EdgeKey(uint32_t a, uint32_t b) {
-  const uint32_t lo = std::min(a, b), hi = std::max(a, b);
-  return (static_cast<uint64_t>(lo) << 32) | hi;
-}
+// Undirected edges bucketed by their smaller endpoint: a face corner adds at most
+// one edge to its bucket, so the buckets are sized by counting corners, and a
+// lookup scans a handful of entries instead of hashing.
+class EdgeNumbering {
+ public:
+  EdgeNumbering(uint32_t num_vertices, const std::vector<Face>& faces) {
+    uint32_t max_index = 0;
+    for (const Face& f : faces) max_index = std::max({max_index, f[0], f[1], f[2]});
+    const size_t buckets = std::max<size_t>(num_vertices, size_t{max_index} + 1);
+    begin_.assign(buckets + 1, 0);
+    for (const Face& f : faces) {
+      for (int c = 0; c < 3; ++c) ++begin_[std::min(f[c], f[(c + 1) % 3]) + 1];
+    }
+    for (size_t v = 0; v < buckets; ++v) begin_[v + 1] += begin_[v];
+    fill_.assign(begin_.begin(), begin_.end() - 1);
+    other_.resize(begin_.back());
+    number_.resize(begin_.back());
+  }
+
+  // The number of edge (a, b), given `next` (and *added = true) if it is new.
+  uint32_t Find(uint32_t a, uint32_t b, uint32_t next, bool* added) {
+    const uint32_t lo = std::min(a, b), hi = std::max(a, b);
+    for (uint32_t i = begin_[lo]; i < fill_[lo]; ++i) {
+      if (other_[i] == hi) {
+        *added = false;
+        return number_[i];
+      }
+    }
+    const uint32_t slot = fill_[lo]++;
+    other_[slot] = hi;
+    number_[slot] = next;
+    *added = true;
+    return next;
+  }
+
+ private:
+  std::vector<uint32_t> begin_, fill_, other_, number_;
+};
 
 }  // namespace
 
 void SubdivideConnectivity(uint32_t num_vertices, const std::vector<Face>& faces,
                            std::vector<Face>* fine_faces, std::vector<Edge>* odd_edges) {
-  std::unordered_map<uint64_t, uint32_t> edge_to_odd;
-  edge_to_odd.reserve(faces.size() * 2);
+  EdgeNumbering numbering(num_vertices, faces);
   odd_edges->clear();
   odd_edges->reserve(faces.size() * 3 / 2 + 3);
   fine_faces->clear();
-  fine_faces->reserve(faces.size() * 4);
+  fine_faces->resize(faces.size() * 4);
   auto odd_vertex = [&](uint32_t a, uint32_t b) {
-    auto [it, inserted] = edge_to_odd.emplace(EdgeKey(a, b), 0u);
-    if (inserted) {
-      it->second = num_vertices + static_cast<uint32_t>(odd_edges->size());
-      odd_edges->push_back({a, b});
-    }
-    return it->second;
+    bool added = false;
+    const uint32_t v = numbering.Find(a, b, num_vertices + static_cast<uint32_t>(odd_edges->size()), &added);
+    if (added) odd_edges->push_back({a, b});
+    return v;
   };
+  Face* out = fine_faces->data();
   for (const Face& f : faces) {
     const uint32_t m01 = odd_vertex(f[0], f[1]);
     const uint32_t m12 = odd_vertex(f[1], f[2]);
     const uint32_t m20 = odd_vertex(f[2], f[0]);
-    fine_faces->push_back({f[0], m01, m20});
-    fine_faces->push_back({m01, f[1], m12});
-    fine_faces->push_back({m20, m12, f[2]});
-    fine_faces->push_back({m01, m12, m20});
+    *out++ = {f[0], m01, m20};
+    *out++ = {m01, f[1], m12};
+    *out++ = {m20, m12, f[2]};
+    *out++ = {m01, m12, m20};
   }
 }
 
@@ -100,18 +131,31 @@ int SemiRegularHierarchy::VertexLevel(uint32_t v) const {
   return level;
 }
 
+namespace {
+
+void AppendKept(const Mesh& kept, Mesh* out) {
+  const uint32_t offset = static_cast<uint32_t>(out->positions.size());
+  out->positions.insert(out->positions.end(), kept.positions.begin(), kept.positions.end());
+  for (const Face& f : kept.faces) out->faces.push_back({f[0] + offset, f[1] + offset, f[2] + offset});
+}
+
+}  // namespace
+
 Mesh ExtractLevel(const SemiRegularMesh& mesh, int level) {
   Mesh out;
-  const SemiRegularHierarchy& h = mesh.hierarchy;
-  const uint32_t n = h.NumVertices(level);
+  const uint32_t n = mesh.hierarchy.NumVertices(level);
   out.positions.assign(mesh.positions.begin(), mesh.positions.begin() + n);
-  out.faces = h.Faces(level);
-  const uint32_t offset = static_cast<uint32_t>(out.positions.size());
-  out.positions.insert(out.positions.end(), mesh.kept_exactly.positions.begin(),
-                       mesh.kept_exactly.positions.end());
-  for (const Face& f : mesh.kept_exactly.faces) {
-    out.faces.push_back({f[0] + offset, f[1] + offset, f[2] + offset});
-  }
+  out.faces = mesh.hierarchy.Faces(level);
+  AppendKept(mesh.kept_exactly, &out);
+  return out;
+}
+
+Mesh ExtractLevel(SemiRegularMesh&& mesh, int level) {
+  Mesh out;
+  out.positions = std::move(mesh.positions);
+  out.positions.resize(mesh.hierarchy.NumVertices(level));
+  out.faces = mesh.hierarchy.TakeFaces(level);
+  AppendKept(mesh.kept_exactly, &out);
   return out;
 }
 

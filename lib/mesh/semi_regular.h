@@ -20,6 +20,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/status.h"
@@ -50,6 +51,9 @@ class SemiRegularHierarchy {
   uint32_t NumOddVertices(int j) const { return vertex_counts_[j + 1] - vertex_counts_[j]; }
   const std::vector<Face>& Faces(int level) const { return faces_[level]; }
   const std::vector<Face>& BaseFaces() const { return faces_[0]; }
+  // Moves level `level`'s faces out, leaving that level without faces: for a
+  // caller done with the hierarchy (ExtractLevel of a temporary mesh).
+  std::vector<Face> TakeFaces(int level) { return std::move(faces_[level]); }
   // Edge of level j carrying odd vertex NumVertices(j) + k, for k < NumOddVertices(j).
   const Edge& OddEdge(int j, uint32_t k) const { return odd_edges_[j][k]; }
   const std::vector<Edge>& OddEdges(int j) const { return odd_edges_[j]; }
@@ -83,6 +87,9 @@ struct SemiRegularMesh {
 
 // Level `level` of a semi-regular mesh as a plain mesh (kept_exactly appended).
 Mesh ExtractLevel(const SemiRegularMesh& mesh, int level);
+// The same for a mesh the caller is done with: the finest level's positions and
+// faces are moved rather than copied (a decoder's last step).
+Mesh ExtractLevel(SemiRegularMesh&& mesh, int level);
 
 // Refines connectivity only: returns the faces of the next level and the odd edges,
 // following the rules at the top of this file. Exposed for tests and the remesher.

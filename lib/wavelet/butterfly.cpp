@@ -48,7 +48,7 @@
 #include "wavelet/butterfly.h"
 
 #include <cmath>
-#include <optional>
+#include <memory>
 #include <utility>
 
 #include <Eigen/Geometry>
@@ -60,33 +60,6 @@ namespace {
 
 constexpr uint32_t kNone = LevelAdjacency::kNone;
 using VertexType = LevelAdjacency::VertexType;
-
-// Accumulates one stencil, merging repeated indices; reused across edges so the
-// per-edge cost is allocation-free.
-class StencilBuilder {
- public:
-  void Clear() { terms_.clear(); }
-  void Add(uint32_t v, double w) {
-    for (auto& term : terms_) {
-      if (term.first == v) {
-        term.second += w;
-        return;
-      }
-    }
-    terms_.emplace_back(v, w);
-  }
-  void AppendTo(StencilTable* table) const {
-    for (const auto& [v, w] : terms_) {
-      if (w == 0.0) continue;
-      table->indices.push_back(v);
-      table->weights.push_back(w);
-    }
-    table->offsets.push_back(static_cast<uint32_t>(table->indices.size()));
-  }
-
- private:
-  std::vector<std::pair<uint32_t, double>> terms_;
-};
 
 void AddMidpoint(uint32_t a, uint32_t b, StencilBuilder* s) {
   s->Add(a, 0.5);
@@ -194,21 +167,52 @@ std::vector<double> ButterflyExtraordinaryWeights(uint32_t k) {
   return s;
 }
 
+void StencilBuilder::Add(uint32_t v, double w) {
+  for (auto& term : terms_) {
+    if (term.first == v) {
+      term.second += w;
+      return;
+    }
+  }
+  terms_.emplace_back(v, w);
+}
+
+void StencilBuilder::AppendTo(StencilTable* table) const {
+  for (const auto& [v, w] : terms_) {
+    if (w == 0.0) continue;
+    table->indices.push_back(v);
+    table->weights.push_back(w);
+  }
+  table->offsets.push_back(static_cast<uint32_t>(table->indices.size()));
+}
+
+Vec3 StencilBuilder::Apply(const std::vector<Vec3>& values) const {
+  Vec3 sum = Vec3::Zero();
+  for (const auto& [v, w] : terms_) {
+    if (w != 0.0) sum += w * values[v];
+  }
+  return sum;
+}
+
+ButterflyPredictor::ButterflyPredictor(const SemiRegularHierarchy& hierarchy, int j)
+    : hierarchy_(hierarchy), j_(j), adjacency_(hierarchy.NumVertices(j), hierarchy.Faces(j)) {}
+
+const StencilBuilder& ButterflyPredictor::Stencil(uint32_t k) const {
+  const Edge& e = hierarchy_.OddEdge(j_, k);
+  builder_.Clear();
+  AddEdgeStencil(adjacency_, e[0], e[1], &builder_);
+  return builder_;
+}
+
 StencilTable BuildButterflyStencils(const SemiRegularHierarchy& hierarchy, int j) {
-  const LevelAdjacency adj(hierarchy.NumVertices(j), hierarchy.Faces(j));
+  const ButterflyPredictor predictor(hierarchy, j);
   const uint32_t num_odd = hierarchy.NumOddVertices(j);
   StencilTable table;
   table.offsets.reserve(static_cast<size_t>(num_odd) + 1);
   table.indices.reserve(static_cast<size_t>(num_odd) * 8);
   table.weights.reserve(static_cast<size_t>(num_odd) * 8);
   table.offsets.push_back(0);
-  StencilBuilder builder;
-  for (uint32_t k = 0; k < num_odd; ++k) {
-    const Edge& e = hierarchy.OddEdge(j, k);
-    builder.Clear();
-    AddEdgeStencil(adj, e[0], e[1], &builder);
-    builder.AppendTo(&table);
-  }
+  for (uint32_t k = 0; k < num_odd; ++k) predictor.Stencil(k).AppendTo(&table);
   return table;
 }
 
@@ -262,29 +266,62 @@ Vec3 TangentFor(const Vec3& n, const Vec3& edge) {
 
 }  // namespace
 
+OddFrames::OddFrames(const SemiRegularHierarchy& hierarchy, int j, const StencilTable& stencils,
+                     const std::vector<Vec3>& positions)
+    : hierarchy_(hierarchy),
+      j_(j),
+      stencils_(&stencils),
+      positions_(positions),
+      vertex_normals_(VertexNormals(hierarchy.Faces(j), hierarchy.NumVertices(j), positions)) {}
+
+OddFrames::OddFrames(const ButterflyPredictor& predictor, const std::vector<Vec3>& positions)
+    : hierarchy_(predictor.hierarchy()),
+      j_(predictor.level()),
+      predictor_(&predictor),
+      positions_(positions),
+      vertex_normals_(VertexNormals(hierarchy_.Faces(j_), hierarchy_.NumVertices(j_), positions)) {}
+
+OddFrames::~OddFrames() = default;
+
+// Rule F2's second choice needs half-edges; they are built only when a stencil
+// normal degenerates, which smooth levels never see.
+const LevelAdjacency& OddFrames::Adjacency() const {
+  if (predictor_) return predictor_->adjacency();
+  if (!adjacency_) adjacency_ = std::make_unique<LevelAdjacency>(hierarchy_.NumVertices(j_), hierarchy_.Faces(j_));
+  return *adjacency_;
+}
+
+Vec3 OddFrames::StencilNormal(uint32_t k) const {
+  if (predictor_) return predictor_->Stencil(k).Apply(vertex_normals_);
+  // Same sum, in the same order, as ApplyStencils over the vertex normals.
+  Vec3 sum = Vec3::Zero();
+  for (uint32_t i = stencils_->offsets[k]; i < stencils_->offsets[k + 1]; ++i) {
+    sum += stencils_->weights[i] * vertex_normals_[stencils_->indices[i]];
+  }
+  return sum;
+}
+
+LocalFrame OddFrames::Frame(uint32_t k) const {
+  const Vec3 stencil_normal = StencilNormal(k);
+  const Edge& e = hierarchy_.OddEdge(j_, k);
+  LocalFrame frame;
+  const double len = stencil_normal.norm();
+  if (len > 1e-12 && std::isfinite(len)) {
+    frame.normal = stencil_normal / len;
+  } else {
+    frame.normal = EdgeFaceNormal(Adjacency(), hierarchy_.Faces(j_), e, positions_);
+  }
+  frame.tangent = TangentFor(frame.normal, positions_[e[1]] - positions_[e[0]]);
+  frame.bitangent = frame.normal.cross(frame.tangent);
+  return frame;
+}
+
 std::vector<LocalFrame> ComputeOddFrames(const SemiRegularHierarchy& hierarchy, int j,
                                          const StencilTable& stencils,
                                          const std::vector<Vec3>& positions) {
-  const std::vector<Face>& faces = hierarchy.Faces(j);
-  const std::vector<Vec3> vertex_normals =
-      VertexNormals(faces, hierarchy.NumVertices(j), positions);
-  std::vector<Vec3> stencil_normals;
-  ApplyStencils(stencils, vertex_normals, &stencil_normals);
-  std::optional<LevelAdjacency> adj;  // only built when a normal degenerates
+  const OddFrames source(hierarchy, j, stencils, positions);
   std::vector<LocalFrame> frames(stencils.size());
-  for (size_t k = 0; k < frames.size(); ++k) {
-    const Edge& e = hierarchy.OddEdge(j, static_cast<uint32_t>(k));
-    LocalFrame& frame = frames[k];
-    const double len = stencil_normals[k].norm();
-    if (len > 1e-12 && std::isfinite(len)) {
-      frame.normal = stencil_normals[k] / len;
-    } else {
-      if (!adj) adj.emplace(hierarchy.NumVertices(j), faces);
-      frame.normal = EdgeFaceNormal(*adj, faces, e, positions);
-    }
-    frame.tangent = TangentFor(frame.normal, positions[e[1]] - positions[e[0]]);
-    frame.bitangent = frame.normal.cross(frame.tangent);
-  }
+  for (size_t k = 0; k < frames.size(); ++k) frames[k] = source.Frame(static_cast<uint32_t>(k));
   return frames;
 }
 

@@ -9,10 +9,13 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
+#include <utility>
 #include <vector>
 
 #include "mesh/mesh.h"
 #include "mesh/semi_regular.h"
+#include "wavelet/level_adjacency.h"
 
 namespace eqmesh {
 
@@ -24,6 +27,21 @@ struct StencilTable {
   std::vector<uint32_t> indices;
   std::vector<double> weights;
   size_t size() const { return offsets.empty() ? 0 : offsets.size() - 1; }
+};
+
+// Accumulates one stencil, merging repeated indices in first-seen order; reused
+// across edges so the per-edge cost is allocation-free.
+class StencilBuilder {
+ public:
+  void Clear() { terms_.clear(); }
+  void Add(uint32_t v, double w);
+  // Appends the terms, exact zeros dropped, as one row of `table`.
+  void AppendTo(StencilTable* table) const;
+  // The row AppendTo would write, applied to `values` as ApplyStencils does.
+  Vec3 Apply(const std::vector<Vec3>& values) const;
+
+ private:
+  std::vector<std::pair<uint32_t, double>> terms_;
 };
 
 // Orthonormal frame at an odd vertex's predicted point.
@@ -38,6 +56,26 @@ struct LocalFrame {
 // the edge, s_i to the i-th ring neighbour after it in either rotational
 // direction). Empty for k < 3. Exposed for tests and the format spec.
 std::vector<double> ButterflyExtraordinaryWeights(uint32_t k);
+
+// The stencils of refinement j -> j+1 one at a time, for callers that apply each
+// once (a decoder): no table is stored, which at the finest level saves more
+// memory than the level's positions take. Stencil(k) is row k of
+// BuildButterflyStencils, and its Apply gives what ApplyStencils gives. Holds a
+// reference to `hierarchy`; not thread-safe (one builder is reused).
+class ButterflyPredictor {
+ public:
+  ButterflyPredictor(const SemiRegularHierarchy& hierarchy, int j);
+  const StencilBuilder& Stencil(uint32_t k) const;
+  const SemiRegularHierarchy& hierarchy() const { return hierarchy_; }
+  int level() const { return j_; }
+  const LevelAdjacency& adjacency() const { return adjacency_; }
+
+ private:
+  const SemiRegularHierarchy& hierarchy_;
+  int j_;
+  LevelAdjacency adjacency_;
+  mutable StencilBuilder builder_;
+};
 
 // Modified butterfly stencils for all odd vertices of refinement j -> j+1,
 // including extraordinary (valence != 6) and boundary rules. Connectivity only.
@@ -58,5 +96,30 @@ void ApplyStencils(const StencilTable& stencils, const std::vector<Vec3>& positi
 std::vector<LocalFrame> ComputeOddFrames(const SemiRegularHierarchy& hierarchy, int j,
                                          const StencilTable& stencils,
                                          const std::vector<Vec3>& positions);
+
+// The same frames one odd vertex at a time, for a decoder that needs them only
+// where a detail is non-zero. Frame(k) equals ComputeOddFrames(...)[k] exactly.
+// Holds references to its arguments, which must outlive it; not thread-safe
+// (the fallback's adjacency is built on first use).
+class OddFrames {
+ public:
+  OddFrames(const SemiRegularHierarchy& hierarchy, int j, const StencilTable& stencils,
+            const std::vector<Vec3>& positions);
+  OddFrames(const ButterflyPredictor& predictor, const std::vector<Vec3>& positions);
+  ~OddFrames();
+  LocalFrame Frame(uint32_t k) const;
+
+ private:
+  const LevelAdjacency& Adjacency() const;
+  Vec3 StencilNormal(uint32_t k) const;
+
+  const SemiRegularHierarchy& hierarchy_;
+  int j_;
+  const StencilTable* stencils_ = nullptr;        // one of these two is set
+  const ButterflyPredictor* predictor_ = nullptr;
+  const std::vector<Vec3>& positions_;
+  std::vector<Vec3> vertex_normals_;
+  mutable std::unique_ptr<LevelAdjacency> adjacency_;
+};
 
 }  // namespace eqmesh

@@ -25,6 +25,7 @@
 #include "wavelet/transform.h"
 
 #include <algorithm>
+#include <memory>
 #include <string>
 
 namespace eqmesh {
@@ -67,30 +68,67 @@ StencilTable BuildUpdateTable(const SemiRegularHierarchy& h, int j) {
   return table;
 }
 
+bool AllZero(const std::vector<Vec3>& values, uint32_t count) {
+  for (uint32_t k = 0; k < count; ++k) {
+    if (values[k].x() != 0.0 || values[k].y() != 0.0 || values[k].z() != 0.0) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 RefinementStep::RefinementStep(const SemiRegularHierarchy& hierarchy, int j, WaveletKind kind)
-    : hierarchy_(&hierarchy), j_(j), kind_(kind), stencils_(BuildButterflyStencils(hierarchy, j)) {
-  if (kind == WaveletKind::kLifted) {
-    update_ = BuildUpdateTable(hierarchy, j);
-  } else {
-    update_.offsets.assign(static_cast<size_t>(num_coarse()) + 1, 0);
+    : hierarchy_(&hierarchy), j_(j), kind_(kind) {}
+
+RefinementStep::~RefinementStep() = default;
+
+const StencilTable& RefinementStep::stencils() const {
+  if (!stencils_) stencils_ = BuildButterflyStencils(*hierarchy_, j_);
+  return *stencils_;
+}
+
+const ButterflyPredictor& RefinementStep::predictor() const {
+  if (!predictor_) predictor_ = std::make_unique<ButterflyPredictor>(*hierarchy_, j_);
+  return *predictor_;
+}
+
+// Built on first use: a decoder whose level details are all zero never needs it.
+const StencilTable& RefinementStep::update() const {
+  if (!update_) {
+    if (kind_ == WaveletKind::kLifted) {
+      update_ = BuildUpdateTable(*hierarchy_, j_);
+    } else {
+      update_.emplace();
+      update_->offsets.assign(static_cast<size_t>(num_coarse()) + 1, 0);
+    }
   }
+  return *update_;
 }
 
 void RefinementStep::ApplyUpdate(const std::vector<Vec3>& details, double sign,
                                  std::vector<Vec3>* values) const {
+  // Undoing an update of all-zero details is skipped: each sum is +0, and
+  // x - (+0) == x for every x, -0 included, so the loop would change nothing.
+  // (Adding +0 would turn -0 into +0, so analysis always runs the loop.)
+  if (sign < 0.0 && (details.empty() || AllZero(details, num_odd()))) return;
+  const StencilTable& table = update();
   for (uint32_t v = 0; v < num_coarse(); ++v) {
     Vec3 sum = Vec3::Zero();
-    for (uint32_t i = update_.offsets[v]; i < update_.offsets[v + 1]; ++i) {
-      sum += update_.weights[i] * details[update_.indices[i]];
+    for (uint32_t i = table.offsets[v]; i < table.offsets[v + 1]; ++i) {
+      sum += table.weights[i] * details[table.indices[i]];
     }
     (*values)[v] += sign * sum;
   }
 }
 
 void RefinementStep::Predict(const std::vector<Vec3>& even, std::vector<Vec3>* predicted) const {
-  ApplyStencils(stencils_, even, predicted);
+  if (stencils_) {
+    ApplyStencils(*stencils_, even, predicted);
+    return;
+  }
+  const ButterflyPredictor& p = predictor();
+  predicted->resize(num_odd());
+  for (uint32_t k = 0; k < num_odd(); ++k) (*predicted)[k] = p.Stencil(k).Apply(even);
 }
 
 void RefinementStep::UndoUpdate(const std::vector<Vec3>& coarse, const std::vector<Vec3>& details,
@@ -108,13 +146,31 @@ void RefinementStep::Analyze(const std::vector<Vec3>& fine, std::vector<Vec3>* c
   if (kind_ == WaveletKind::kLifted) ApplyUpdate(*details, 1.0, coarse);
 }
 
+// The odd values are written straight after the even ones: the predictions read
+// only fine[0, num_coarse()), so no separate prediction array is needed. Empty
+// details leave the prediction as is, which is what adding +0 gives (a stencil
+// sum starts at +0, so it is never -0).
 void RefinementStep::Synthesize(const std::vector<Vec3>& coarse, const std::vector<Vec3>& details,
                                 std::vector<Vec3>* fine) const {
-  std::vector<Vec3> predicted;
+  const uint32_t n = num_coarse();
+  fine->reserve(static_cast<size_t>(n) + num_odd());
   UndoUpdate(coarse, details, fine);
-  Predict(*fine, &predicted);
-  fine->resize(static_cast<size_t>(num_coarse()) + num_odd());
-  for (uint32_t k = 0; k < num_odd(); ++k) (*fine)[num_coarse() + k] = predicted[k] + details[k];
+  fine->resize(static_cast<size_t>(n) + num_odd());
+  Vec3* odd = fine->data() + n;
+  if (stencils_) {
+    const StencilTable& t = *stencils_;
+    for (uint32_t k = 0; k < num_odd(); ++k) {
+      Vec3 sum = Vec3::Zero();
+      for (uint32_t i = t.offsets[k]; i < t.offsets[k + 1]; ++i) sum += t.weights[i] * (*fine)[t.indices[i]];
+      odd[k] = details.empty() ? sum : Vec3(sum + details[k]);
+    }
+    return;
+  }
+  const ButterflyPredictor& p = predictor();
+  for (uint32_t k = 0; k < num_odd(); ++k) {
+    const Vec3 predicted = p.Stencil(k).Apply(*fine);
+    odd[k] = details.empty() ? predicted : Vec3(predicted + details[k]);
+  }
 }
 
 std::vector<LocalFrame> FramesForLevel(const RefinementStep& step,

@@ -9,6 +9,8 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
+#include <optional>
 #include <vector>
 
 #include "core/status.h"
@@ -27,6 +29,8 @@ enum class WaveletKind : uint8_t { kUnlifted = 0, kLifted = 1 };
 class RefinementStep {
  public:
   RefinementStep(const SemiRegularHierarchy& hierarchy, int j, WaveletKind kind);
+  ~RefinementStep();
+  RefinementStep(RefinementStep&&) = default;
 
   int level() const { return j_; }
   WaveletKind kind() const { return kind_; }
@@ -34,22 +38,27 @@ class RefinementStep {
   uint32_t num_coarse() const { return hierarchy_->NumVertices(j_); }
   uint32_t num_odd() const { return hierarchy_->NumOddVertices(j_); }
 
-  // Butterfly prediction stencils of the odd vertices (indices: level-j vertices).
-  const StencilTable& stencils() const { return stencils_; }
+  // Butterfly prediction stencils of the odd vertices (indices: level-j vertices),
+  // built on first use. Until then Predict and Synthesize build each stencil as
+  // they apply it (same sums, same order), which a single pass prefers.
+  const StencilTable& stencils() const;
+  // The stencils one at a time (built on first use).
+  const ButterflyPredictor& predictor() const;
   // Lifting update: row v lists (odd index k, weight) with coarse_v = even_v +
   // sum weight * detail_k. Empty rows for the unlifted kind.
-  const StencilTable& update() const { return update_; }
+  const StencilTable& update() const;
 
   // fine -> coarse values (lifted: updated scaling values) and world details
   // (fine odd minus the prediction from the fine mesh's level-j positions).
   void Analyze(const std::vector<Vec3>& fine, std::vector<Vec3>* coarse,
                std::vector<Vec3>* details) const;
-  // Exact inverse of Analyze (up to rounding).
+  // Exact inverse of Analyze (up to rounding). Empty `details` stand for all zero.
   void Synthesize(const std::vector<Vec3>& coarse, const std::vector<Vec3>& details,
                   std::vector<Vec3>* fine) const;
 
   // Level-j positions from coarse values and this level's details: lifted undoes
   // the update, unlifted copies. These are the positions predictions are made from.
+  // Empty `details` stand for all zero.
   void UndoUpdate(const std::vector<Vec3>& coarse, const std::vector<Vec3>& details,
                   std::vector<Vec3>* even) const;
   // even -> prediction of every odd vertex (num_odd entries).
@@ -61,8 +70,9 @@ class RefinementStep {
   const SemiRegularHierarchy* hierarchy_;
   int j_;
   WaveletKind kind_;
-  StencilTable stencils_;
-  StencilTable update_;
+  mutable std::optional<StencilTable> stencils_;
+  mutable std::unique_ptr<ButterflyPredictor> predictor_;
+  mutable std::optional<StencilTable> update_;  // update(): built on first use
 };
 
 // Frames in which the details of refinement j -> j+1 are coded. Normative rule:

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <set>
@@ -417,6 +418,65 @@ TEST(EqDecoder, GarbageAndBitFlipsNeverCrash) {
     }
   }
   EXPECT_FALSE(Decode(*layout, nullptr, 0).ok());
+}
+
+// A level whose all-zero-neighbourhood quantizers code nothing is all zero; the
+// decoder sees that from the side information alone and builds no layout.
+TEST(EqDecoder, LevelsThatCodeNothingAreRecognisedFromTheSideInformation) {
+  const SemiRegularHierarchy h = IcoHierarchy(3);
+  auto layout = BuildEqLevelLayout(h, 2);
+  ASSERT_TRUE(layout.ok());
+  const uint32_t count = static_cast<uint32_t>(layout->size());
+  for (const bool context : {true, false}) {
+    const Coded zero = EncodeOrDie(*layout, std::vector<Vec3>(count, Vec3::Zero()), LambdaForStep(1e-3), context);
+    auto nothing = EqLevelCodesNothing(zero.bytes.data(), zero.bytes.size(), count, context, 2);
+    ASSERT_TRUE(nothing.ok()) << nothing.status().ToString();
+    EXPECT_TRUE(*nothing);
+    auto full = Decode(*layout, zero.bytes.data(), zero.bytes.size(), context);
+    ASSERT_TRUE(full.ok());
+    for (const Vec3& v : *full) EXPECT_EQ(v, Vec3::Zero());
+    std::vector<uint8_t> padded = zero.bytes;
+    padded.push_back(0x5a);
+    EXPECT_FALSE(EqLevelCodesNothing(padded.data(), padded.size(), count, context, 2).ok());
+    EXPECT_FALSE(Decode(*layout, padded.data(), padded.size(), context).ok());
+    const Coded some = EncodeOrDie(*layout, SyntheticCoefficients(h, 2, 7), LambdaForStep(1e-4), context);
+    auto coded = EqLevelCodesNothing(some.bytes.data(), some.bytes.size(), count, context, 2);
+    ASSERT_TRUE(coded.ok());
+    EXPECT_FALSE(*coded);
+    EXPECT_FALSE(*EqLevelCodesNothing(zero.bytes.data(), zero.bytes.size(), count + 1, context, 2));
+  }
+}
+
+// sigma-hat from 64-bit arithmetic where the sums allow it, 128-bit beyond: both
+// must follow the one integer rule of eq_model.h.
+TEST(EqModel, SigmaEstimateFollowsTheIntegerRuleForSmallAndHugeValues) {
+  const SemiRegularHierarchy h = IcoHierarchy(3);
+  auto layout = BuildEqLevelLayout(h, 2);
+  ASSERT_TRUE(layout.ok());
+  const EqContextTerms terms(*layout, false);
+  std::mt19937 rng(5);
+  for (const int max_bits : {3, 12, 24, 28}) {
+    std::vector<int64_t> recon(layout->size());
+    for (int64_t& r : recon) r = static_cast<int64_t>(rng() % (uint32_t{1} << max_bits)) - (int64_t{1} << (max_bits - 1));
+    for (size_t p = 0; p < recon.size(); ++p) {
+      EqUint128 sum = 0;
+      uint64_t weight = 0;
+      terms.ForEach(p, [&](size_t n, uint32_t w) {
+        sum += static_cast<EqUint128>(static_cast<uint64_t>(recon[n] * recon[n])) * w;
+        weight += w;
+      });
+      int32_t got = 0;
+      const bool predictable = EstimateLogSigma2(recon.data(), terms, p, &got);
+      ASSERT_EQ(predictable, sum != 0);
+      if (!predictable) continue;
+      EqUint128 mean = (sum << 16) / weight;
+      if (mean == 0) mean = 1;
+      const double log2_mean = std::log2(static_cast<double>(mean));
+      const int32_t expected = std::clamp(Log2Sixteenths(mean) - 256, kEqMinLogSigma2, kEqMaxLogSigma2);
+      ASSERT_EQ(got, expected) << "bits " << max_bits << " value " << p;
+      ASSERT_NEAR(Log2Sixteenths(mean) / 16.0, log2_mean, 1.0 / 16.0 + 1e-9);
+    }
+  }
 }
 
 }  // namespace

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <utility>
+#include <vector>
 
 #include <Eigen/Geometry>
 
@@ -328,6 +330,41 @@ TEST(Butterfly, DegenerateGeometryGivesValidFrames) {
     EXPECT_EQ(f.normal, Vec3::UnitZ());
     EXPECT_EQ(f.tangent, Vec3::UnitX());
     EXPECT_EQ(f.bitangent, Vec3::UnitY());
+  }
+}
+
+// The decoder builds stencils and frames one odd vertex at a time; they must be
+// the table's, bit for bit, on regular, extraordinary, boundary, non-manifold
+// and degenerate levels.
+TEST(Butterfly, OnDemandStencilsAndFramesMatchTheTableBitForBit) {
+  Mesh fin = testing::MakeDisc(1);
+  fin.faces.push_back({0, 1, static_cast<uint32_t>(fin.positions.size())});  // a third face on edge (0, 1)
+  fin.positions.push_back(Vec3(0.1, 0.2, 0.9));
+  std::vector<std::pair<Mesh, int>> cases = {{testing::MakeIcosphere(0), 3}, {testing::MakeTorus(6, 5), 2},
+                                             {testing::MakeDisc(2), 2}, {fin, 2}};
+  Mesh flat = testing::MakeIcosphere(0);
+  for (Vec3& p : flat.positions) p = Vec3(1, 2, 3);
+  cases.push_back({flat, 1});
+  for (const auto& [mesh, levels] : cases) {
+    const SemiRegularHierarchy h = Build(mesh, levels);
+    std::vector<Vec3> positions = mesh.positions;
+    positions.resize(h.NumVertices(0), Vec3::Zero());
+    for (int j = 0; j < levels; ++j) {
+      const StencilTable table = BuildButterflyStencils(h, j);
+      std::vector<Vec3> from_table;
+      ApplyStencils(table, positions, &from_table);
+      const std::vector<LocalFrame> frames = ComputeOddFrames(h, j, table, positions);
+      const ButterflyPredictor predictor(h, j);
+      const OddFrames on_demand(predictor, positions);
+      for (uint32_t k = 0; k < h.NumOddVertices(j); ++k) {
+        ASSERT_EQ(predictor.Stencil(k).Apply(positions), from_table[k]) << "level " << j << " odd " << k;
+        const LocalFrame f = on_demand.Frame(k);
+        ASSERT_EQ(f.normal, frames[k].normal) << "level " << j << " odd " << k;
+        ASSERT_EQ(f.tangent, frames[k].tangent);
+        ASSERT_EQ(f.bitangent, frames[k].bitangent);
+      }
+      positions.insert(positions.end(), from_table.begin(), from_table.end());
+    }
   }
 }
 

@@ -243,5 +243,33 @@ TEST(WaveletTransform, NormalMeshHasNoTangentialDetails) {
   }
 }
 
+// The decoder's synthesis builds each stencil as it applies it and takes empty
+// details for all-zero ones; both must give the table's bits exactly.
+TEST(WaveletTransform, SynthesisWithoutATableOrDetailsMatchesTheTableBitForBit) {
+  for (const Mesh& base : {testing::MakeIcosphere(0), testing::MakeDisc(2)}) {
+    const SemiRegularHierarchy h = Build(base, 2);
+    const std::vector<Vec3> finest = RefineWithNoise(h, base.positions, 0.05, 3);
+    for (WaveletKind kind : kKinds) {
+      const WaveletCoefficients c = ForwardTransform(h, finest, kind);
+      std::vector<Vec3> coarse = c.scaling;
+      for (int j = 0; j < h.levels(); ++j) {
+        const RefinementStep with_table(h, j, kind);
+        with_table.stencils();
+        const RefinementStep on_demand(h, j, kind);
+        std::vector<Vec3> a, b;
+        with_table.Synthesize(coarse, c.details[j], &a);
+        on_demand.Synthesize(coarse, c.details[j], &b);
+        ASSERT_EQ(a, b) << "level " << j;
+        const std::vector<Vec3> zero(on_demand.num_odd(), Vec3::Zero());
+        std::vector<Vec3> z_table, z_empty;
+        with_table.Synthesize(coarse, zero, &z_table);
+        on_demand.Synthesize(coarse, {}, &z_empty);
+        ASSERT_EQ(z_table, z_empty) << "level " << j;
+        coarse = std::move(a);
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace eqmesh

@@ -49,6 +49,18 @@ std::vector<int64_t> DecodeTangentialStream(const EqLevelLayout& layout, const E
 
 }  // namespace
 
+StatusOr<bool> EqLevelCodesNothing(const uint8_t* data, size_t size, uint32_t count, bool tangential_context,
+                                   int level) {
+  RangeDecoder dec(data, size);
+  EqSideInfo side;
+  if (!DecodeSideInfo(&dec, count, tangential_context, &side)) return false;
+  if (!UnpredictableQuantizer(side, false).codes_nothing() || !UnpredictableQuantizer(side, true).codes_nothing()) {
+    return false;
+  }
+  EQMESH_RETURN_IF_ERROR(dec.CheckConsumedAll("EQ level " + std::to_string(level)));
+  return true;
+}
+
 StatusOr<std::vector<std::array<int64_t, 3>>> DecodeEqLevelQuanta(const EqLevelLayout& layout,
                                                                  const uint8_t* data, size_t size,
                                                                  bool tangential_context) {

@@ -21,6 +21,13 @@ namespace eqmesh {
 // the decoder compares it with the level before allocating the level's layout.
 int64_t PeekEqLevelCount(const uint8_t* data, size_t size);
 
+// True when the chunk is valid and its side information makes every coefficient
+// of the level zero (UnpredictableQuantizer codes nothing for either stream) and
+// no symbol follows (checked), so the level needs no layout. False when a class is coded or the side information does
+// not decode (DecodeEqLevel then reports it).
+StatusOr<bool> EqLevelCodesNothing(const uint8_t* data, size_t size, uint32_t count, bool tangential_context,
+                                   int level);
+
 // Coefficients in integer multiples of q0, indexed by odd index (not scan position).
 // tangential_context: the chunk's tangential components are context-modelled
 // (stream 1.3, header flag kTangentialContext), else one iid class (1.0-1.2).

@@ -48,12 +48,32 @@ bool DecodeClass(RangeDecoder* dec, int32_t lo, int32_t hi, EqGgdClass* c) {
   return c->shape < kQuantizerShapeCount && c->log_sigma2 >= lo && c->log_sigma2 <= hi;
 }
 
+// Index of the highest set bit of x > 0.
+int HighestBit(uint64_t x) {
+#if defined(__GNUC__)
+  return 63 - __builtin_clzll(x);
+#else
+  int e = 0;
+  while ((x >> e) > 1) ++e;
+  return e;
+#endif
+}
+
+// Log2Sixteenths of a value below 2^64: the same rule, without 128-bit shifts.
+int32_t Log2Sixteenths64(uint64_t x) {
+  const int e = HighestBit(x);
+  const uint32_t m = static_cast<uint32_t>(e >= 31 ? (x >> (e - 31)) : (x << (31 - e)));
+  int f = 15;
+  while (f > 0 && m < kLogThreshold[f]) --f;
+  return 16 * e + f;
+}
+
 }  // namespace
 
 int32_t Log2Sixteenths(EqUint128 x) {
-  int e = 0;
-  while ((x >> e) > 1) ++e;
-  const uint32_t m = static_cast<uint32_t>(e >= 31 ? (x >> (e - 31)) : (x << (31 - e)));
+  if ((x >> 64) == 0) return Log2Sixteenths64(static_cast<uint64_t>(x));
+  int e = 64 + HighestBit(static_cast<uint64_t>(x >> 64));
+  const uint32_t m = static_cast<uint32_t>(x >> (e - 31));
   int f = 15;
   while (f > 0 && m < kLogThreshold[f]) --f;
   return 16 * e + f;
@@ -69,10 +89,17 @@ bool EstimateLogSigma2(const int64_t* recon, const EqContextTerms& terms, size_t
     weight += w;
   });
   if (sum == 0) return false;
-  // 2^16 headroom keeps 1/16-octave resolution for small sums.
-  EqUint128 mean = (sum << 16) / weight;
-  if (mean == 0) mean = 1;
-  const int32_t s = Log2Sixteenths(mean) - 16 * 16;
+  // 2^16 headroom keeps 1/16-octave resolution for small sums. Sums below 2^47
+  // (all but absurd coefficients) take the same quotient in 64 bits.
+  int32_t log_mean = 0;
+  if (sum < (static_cast<EqUint128>(1) << 47)) {
+    const uint64_t mean = (static_cast<uint64_t>(sum) << 16) / weight;
+    log_mean = Log2Sixteenths64(mean == 0 ? 1 : mean);
+  } else {
+    const EqUint128 mean = (sum << 16) / weight;
+    log_mean = Log2Sixteenths(mean);
+  }
+  const int32_t s = log_mean - 16 * 16;
   *log_sigma2 = std::clamp(s, kEqMinLogSigma2, kEqMaxLogSigma2);
   return true;
 }
@@ -100,7 +127,6 @@ EqChoice ChooseQuantizer(const EqSideInfo& side, const int64_t* recon, const EqC
                          size_t p) {
   const bool t = terms.tangential();
   const EqGgdClass& predictable = side.PredictableOf(t);
-  const EqGgdClass& unpredictable = side.UnpredictableOf(t);
   const int32_t lambda_code = t ? side.lambda_code + side.tangential_code : side.lambda_code;
   EqChoice c;
   if (EstimateLogSigma2(recon, terms, p, &c.log_sigma2_hat)) {
@@ -111,17 +137,18 @@ EqChoice ChooseQuantizer(const EqSideInfo& side, const int64_t* recon, const EqC
     return c;
   }
   c.ctx = t ? EqContext::kTangential : EqContext::kUnpredictable;
-  if (unpredictable.present) {
-    c.quantizer = SelectQuantizer(unpredictable.shape, unpredictable.log_sigma2, lambda_code);
-  }
+  c.quantizer = UnpredictableQuantizer(side, t);
   return c;
 }
 
-EqQuantizer TangentialQuantizer(const EqSideInfo& side) {
-  if (!side.tangential.present) return {};
-  return SelectQuantizer(side.tangential.shape, side.tangential.log_sigma2,
-                         side.lambda_code + side.tangential_code);
+EqQuantizer UnpredictableQuantizer(const EqSideInfo& side, bool tangential) {
+  const EqGgdClass& unpredictable = side.UnpredictableOf(tangential);
+  if (!unpredictable.present) return {};
+  const int32_t lambda_code = tangential ? side.lambda_code + side.tangential_code : side.lambda_code;
+  return SelectQuantizer(unpredictable.shape, unpredictable.log_sigma2, lambda_code);
 }
+
+EqQuantizer TangentialQuantizer(const EqSideInfo& side) { return UnpredictableQuantizer(side, true); }
 
 int EscapeOrder(const QuantizerEntry& entry) {
   int log2_step = 0;

@@ -185,6 +185,11 @@ EqChoice ChooseQuantizer(const EqSideInfo& side, const int64_t* recon, const EqC
                          size_t p);
 // Streams 1.0-1.2: the one quantizer of every tangential component.
 EqQuantizer TangentialQuantizer(const EqSideInfo& side);
+// The quantizer of a value whose causal neighbourhood is all zero (of the
+// tangential stream, or of the normal one). When it codes nothing for both
+// streams, every value of the level is zero: the first value of each stream has
+// no neighbours, and by induction each later one sees only zeros.
+EqQuantizer UnpredictableQuantizer(const EqSideInfo& side, bool tangential);
 
 // Exp-Golomb order of the escape of an entry (see above).
 int EscapeOrder(const QuantizerEntry& entry);
