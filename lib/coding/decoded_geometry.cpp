@@ -1,8 +1,18 @@
 #include "coding/decoded_geometry.h"
 
+#include <utility>
+
 #include "coding/atlas/seam_split.h"
 
 namespace eqmesh {
+
+DecodedGeometry ExtractDecodedGeometry(SemiRegularMesh&& decoded) {
+  DecodedGeometry out;
+  const int level = decoded.hierarchy.levels();
+  out.mesh = ExtractLevel(std::move(decoded), level);
+  out.normals = UnitVertexNormals(out.mesh);
+  return out;
+}
 
 DecodedGeometry ExtractDecodedGeometry(const SemiRegularMesh& decoded, const AtlasLayout* atlas) {
   const int level = decoded.hierarchy.levels();
@@ -28,9 +38,10 @@ DecodedGeometry ExtractDecodedGeometry(const SemiRegularMesh& decoded, const Atl
 
 StatusOr<DecodedGeometry> DecodeGeometry(const uint8_t* data, size_t size, const DecodeOptions& options,
                                          DecodeInfo* info) {
-  EQMESH_ASSIGN_OR_RETURN(const SemiRegularMesh decoded, DecodeSemiRegular(data, size, options, info));
+  EQMESH_ASSIGN_OR_RETURN(SemiRegularMesh decoded, DecodeSemiRegular(data, size, options, info));
   EQMESH_ASSIGN_OR_RETURN(const std::optional<AtlasLayout> atlas, DecodeAtlas(data, size, decoded));
-  return ExtractDecodedGeometry(decoded, atlas ? &*atlas : nullptr);
+  if (!atlas) return ExtractDecodedGeometry(std::move(decoded));
+  return ExtractDecodedGeometry(decoded, &*atlas);
 }
 
 }  // namespace eqmesh

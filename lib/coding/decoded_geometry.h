@@ -23,6 +23,9 @@ struct DecodedGeometry {
 // The finest decoded level of `decoded` (kept components appended); `atlas` null
 // for a stream without one.
 DecodedGeometry ExtractDecodedGeometry(const SemiRegularMesh& decoded, const AtlasLayout* atlas);
+// The same without an atlas, for a mesh the caller is done with: its finest level
+// is moved, not copied (a loader's peak memory is then one level less).
+DecodedGeometry ExtractDecodedGeometry(SemiRegularMesh&& decoded);
 
 // DecodeSemiRegular, DecodeAtlas and ExtractDecodedGeometry in one: what a loader
 // makes of `size` bytes of a stream.

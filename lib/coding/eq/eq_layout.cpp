@@ -191,6 +191,11 @@ class LayoutBuilder {
     const uint32_t count = static_cast<uint32_t>(layout->scan.size());
     std::vector<uint32_t> seen(count, UINT32_MAX);
     std::vector<uint32_t> frontier, next;
+    // About 12 causal neighbours a vertex on a regular level: reserving once keeps
+    // the finest level's arrays from being copied as they grow.
+    layout->offsets.reserve(static_cast<size_t>(count) + 1);
+    layout->neighbours.reserve(static_cast<size_t>(count) * 13);
+    layout->ring.reserve(static_cast<size_t>(count) * 13);
     layout->offsets.assign(1, 0);
     for (uint32_t i = 0; i < count; ++i) {
       const uint32_t k = layout->scan[i];
