@@ -2,9 +2,11 @@
 # The installed package as an engine sees it: `cmake --install` of BUILD_DIR into a
 # scratch prefix, samples/consumer (a C program) configured with find_package(eqmesh)
 # and built against it, then run on a stream the native tool encodes; its decodes
-# must reach the stream's finest level and keep a triangle budget. Then the same
-# with the decoder built alone (no encoder, tools or Draco: a compiler, CMake and
-# Eigen), which must refuse a Draco-coded stream with a clear error.
+# must reach the stream's finest level and keep a triangle budget; its C++ program
+# encodes with eqmesh::encoder and loads a compressed glTF with eqmesh::loader. Then
+# the same with the decoder built alone (no encoder, tools or Draco: a compiler, CMake
+# and Eigen), consumed as if Eigen were absent, which must refuse a Draco-coded stream
+# with a clear error.
 #   BUILD_DIR  a configured and built tree (default build-test)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -21,6 +23,13 @@ echo "$out"
 grep -q "level 4 of 4" <<<"$out" || { echo "test-install: the finest level never arrived" >&2; exit 1; }
 grep -q "one call: level [0-9]*, [0-9]* vertices, \([0-9]\|[0-9][0-9]\|[0-9][0-9][0-9]\|1[0-9][0-9][0-9]\|2000\) triangles" <<<"$out" ||
   { echo "test-install: the 2000-triangle budget was not kept" >&2; exit 1; }
+# The C++ targets: encode with eqmesh::encoder, load a compressed glTF with eqmesh::loader.
+"$BUILD_DIR/tools/eqmesh" encode samples/meshes/blob.obj "$CONSUMER/blob.glb" --bpv 2 --levels 4 >/dev/null
+out="$("$CONSUMER/encode_and_load" samples/meshes/blob.obj "$CONSUMER/blob.glb")"
+echo "$out"
+grep -q "^encoded 10242 vertices into [0-9]* bytes; decoded [0-9]* vertices" <<<"$out" &&
+  grep -q "^loaded .*blob.glb: [1-9][0-9]* vertices" <<<"$out" ||
+  { echo "test-install: the C++ consumer did not encode and load" >&2; exit 1; }
 
 # The decoder alone.
 ALONE="$BUILD_DIR/decoder-only"
@@ -29,7 +38,9 @@ cmake -S . -B "$ALONE" -G Ninja -DCMAKE_BUILD_TYPE=Debug -DEQMESH_BUILD_ENCODER=
 cmake --build "$ALONE" -j "${JOBS:-2}" >/dev/null
 rm -rf "$ALONE/install" "$ALONE/consumer"
 cmake --install "$ALONE" --prefix "$ALONE/install" >/dev/null
-cmake -S samples/consumer -B "$ALONE/consumer" -G Ninja -DCMAKE_PREFIX_PATH="$(realpath "$ALONE/install")" >/dev/null
+# As an engine without Eigen sees it: the C API needs only the C++ runtime.
+cmake -S samples/consumer -B "$ALONE/consumer" -G Ninja -DCMAKE_PREFIX_PATH="$(realpath "$ALONE/install")" \
+  -DCMAKE_DISABLE_FIND_PACKAGE_Eigen3=TRUE >/dev/null
 cmake --build "$ALONE/consumer" >/dev/null
 "$ALONE/consumer/decode_stream" "$CONSUMER/blob.eqm" | grep -q "level 4 of 4" ||
   { echo "test-install: the decoder built alone did not decode the stream" >&2; exit 1; }

@@ -13,7 +13,7 @@ endif()
 target_include_directories(eqmesh_decoder PUBLIC "$<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/lib>" "$<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}/eqmesh>")
 # draco's imported targets lack Eigen's include path, so Eigen comes first via mesh.
 target_link_libraries(eqmesh_decoder PUBLIC eqmesh_eq_decoder eqmesh_zerotree eqmesh_entropy eqmesh_wavelet
-                      eqmesh_mesh Eigen3::Eigen)
+                      eqmesh_mesh $<BUILD_INTERFACE:Eigen3::Eigen>)
 
 if(NOT EQMESH_BUILD_ENCODER)
   return()
