@@ -44,6 +44,19 @@ cmake -S samples/consumer -B "$ALONE/consumer" -G Ninja -DCMAKE_PREFIX_PATH="$(r
 cmake --build "$ALONE/consumer" >/dev/null
 "$ALONE/consumer/decode_stream" "$CONSUMER/blob.eqm" | grep -q "level 4 of 4" ||
   { echo "test-install: the decoder built alone did not decode the stream" >&2; exit 1; }
+# A small second part travels in the kept-exactly chunk, compact: no Draco needed.
+{ cat samples/meshes/blob.obj
+  n="$(grep -c '^v ' samples/meshes/blob.obj)"
+  printf 'v 2 0 0\nv 2.1 0 0\nv 2 0.1 0\nv 2 0 0.1\n'
+  for f in "1 3 2" "1 2 4" "1 4 3" "2 3 4"; do
+    set -- $f
+    echo "f $(($1 + n)) $(($2 + n)) $(($3 + n))"
+  done; } >"$CONSUMER/two_parts.obj"
+"$BUILD_DIR/tools/eqmesh" encode "$CONSUMER/two_parts.obj" "$CONSUMER/two_parts.eqm" --bpv 2 --levels 4 >/dev/null
+"$BUILD_DIR/tools/eqmesh" info "$CONSUMER/two_parts.eqm" | grep -q "compact kept-exactly chunk" ||
+  { echo "test-install: the kept part did not travel in a compact chunk" >&2; exit 1; }
+"$ALONE/consumer/decode_stream" "$CONSUMER/two_parts.eqm" | grep -q "level 4 of 4" ||
+  { echo "test-install: the decoder built alone did not decode a stream with a kept part" >&2; exit 1; }
 "$BUILD_DIR/tools/eqmesh" encode samples/meshes/blob.obj "$CONSUMER/blob_draco.eqm" --bpv 2 --levels 2 --draco-base >/dev/null 2>&1
 if err="$("$ALONE/consumer/decode_stream" "$CONSUMER/blob_draco.eqm" 2>&1)"; then
   echo "test-install: a Draco-coded stream decoded without Draco" >&2

@@ -74,6 +74,7 @@ nlohmann::json ToJson(const Report& r) {
   j["levels"] = s.levels;
   j["kept_exactly"] = s.has_kept_exactly;
   j["compact_base"] = s.has_compact_base;
+  j["compact_kept"] = s.has_compact_kept;
   j["tangential_context"] = s.has_tangential_context;
   j["lambda"] = s.lambda;
   j["tangential_factor"] = s.tangential_factor;
@@ -110,7 +111,7 @@ void PrintTable(const Report& r) {
   row("levels", num(static_cast<uint64_t>(s.levels)));
   std::string flags = s.has_compact_base ? "compact base" : "Draco base";
   if (s.has_tangential_context) flags += ", tangential context";
-  if (s.has_kept_exactly) flags += ", kept-exactly chunk";
+  if (s.has_kept_exactly) flags += s.has_compact_kept ? ", compact kept-exactly chunk" : ", Draco kept-exactly chunk";
   row("chunks", flags);
   std::snprintf(buf, sizeof buf, "%.6g (tangential factor %.6g), quantum %.6g", s.lambda, s.tangential_factor,
                 s.quantum);

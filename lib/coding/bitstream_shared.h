@@ -47,12 +47,15 @@ namespace eqmesh::bitstream {
 
 constexpr uint8_t kMagic[4] = {'E', 'Q', 'M', 'S'};
 constexpr uint8_t kVersionMajor = 1;
-constexpr uint8_t kVersionMinor = 4;  // 1.1: coder 1 (zerotree); 1.2: kCompactBase;
-                                      // 1.3: kTangentialContext; 1.4: kHasAtlas
+constexpr uint8_t kVersionMinor = 5;  // 1.1: coder 1 (zerotree); 1.2: kCompactBase;
+                                      // 1.3: kTangentialContext; 1.4: kHasAtlas;
+                                      // 1.5: kCompactKept
 // A stream carries the lowest minor version that has every feature it uses, so an
 // optional feature leaves the streams without it byte-identical: 1.3 without an
-// atlas, 1.4 with one.
+// atlas or a compact kept chunk, 1.4 with an atlas, 1.5 with a compact kept chunk.
 constexpr uint8_t kVersionMinorWithoutAtlas = 3;
+constexpr uint8_t kVersionMinorAtlas = 4;
+constexpr uint8_t kVersionMinorCompactKept = 5;
 
 // Wavelet transform the level chunks are expressed in. Pinned values.
 enum class TransformId : uint8_t {
@@ -74,8 +77,9 @@ enum HeaderFlag : uint8_t {
   kCompactBase = 1u << 1,     // the base chunk is a compact chunk, not Draco (1.2)
   kTangentialContext = 1u << 2,  // EQ chunks context-model tangential parts (1.3; coder kEq only)
   kHasAtlas = 1u << 3,           // an atlas chunk follows the kept (or base) chunk (1.4)
+  kCompactKept = 1u << 4,        // the kept chunk is a compact chunk, not Draco (1.5)
 };
-constexpr uint8_t kKnownFlags = kHasKeptExactly | kCompactBase | kTangentialContext | kHasAtlas;
+constexpr uint8_t kKnownFlags = kHasKeptExactly | kCompactBase | kTangentialContext | kHasAtlas | kCompactKept;
 
 // lambda and the tangential factor travel as log2 codes in 1/kLogCodeScale steps;
 // the encoder codes with the value the decoder will rebuild from the code.
@@ -94,9 +98,9 @@ constexpr uint32_t kMaxAtlasSide = 16384;
 // Texels inside each atlas cell's border, kept free of the triangles it holds.
 constexpr uint32_t kMaxAtlasGutter = 255;
 
-// Depths of the base chunk the encoder tries, and the Draco depth of the kept chunk
-// (listed here because its precision is a format promise: "kept exactly" to this
-// many bits).
+// Depths of the base chunk the encoder tries, and the depth of the kept chunk, compact
+// or Draco (listed here because its precision is a format promise: "kept exactly" to
+// this many bits).
 constexpr int kBaseMinBits = 8;
 constexpr int kBaseMaxBits = 20;
 constexpr int kKeptBits = 20;

@@ -27,6 +27,7 @@ StreamInfo MakeStreamInfo(const StreamHeader& h, size_t header_size) {
   s.quantum = h.quantum;
   s.has_kept_exactly = h.has_kept();
   s.has_compact_base = h.has_compact_base();
+  s.has_compact_kept = h.has_compact_kept();
   s.has_tangential_context = h.has_tangential_context();
   s.header_size = header_size;
   s.base_offset = header_size;
@@ -83,6 +84,10 @@ StatusOr<Mesh> DecodeBase(const uint8_t* data, const StreamInfo& s) {
 
 StatusOr<Mesh> DecodeKept(const uint8_t* data, const StreamInfo& s) {
   if (!s.has_kept_exactly) return Mesh();
+  if (s.has_compact_kept) {
+    return DecodeCompactBase(data + s.kept_offset, static_cast<size_t>(s.kept_size),
+                             static_cast<uint32_t>(bitstream::kMaxFinestFaces), "eqm kept-exactly chunk");
+  }
   const DracoMeshLimits limits{static_cast<uint32_t>(bitstream::kMaxFinestFaces),
                                bitstream::kMaxFinestFaces};
   return DecodeDracoMesh(data + s.kept_offset, static_cast<size_t>(s.kept_size), limits, "eqm kept-exactly chunk");

@@ -19,6 +19,7 @@
 
 #include "coding/base_influence.h"
 #include "coding/base_mesh_encoder.h"
+#include "coding/compact_base/compact_base_encoder.h"
 #include "coding/closed_loop.h"
 #include "coding/decoder.h"
 #include "coding/level_encoder.h"
@@ -40,6 +41,7 @@ struct Prepared {
   Mesh base;                       // level-0 values to code (input numbering)
   std::vector<MeshChunkEncoding> base_candidates;  // one per depth
   std::vector<uint8_t> kept_bytes;
+  bool kept_compact = false;  // the kept chunk is compact (kCompactKept), else Draco
 };
 
 // Step 2's result for one base order; passes at different lambdas usually share it.
@@ -134,9 +136,20 @@ StatusOr<Prepared> Prepare(const SemiRegularMesh& mesh, bitstream::TransformId t
   }
   EQMESH_ASSIGN_OR_RETURN(p.base_candidates, EncodeBaseCandidates(p.base, draco_base));
   if (!mesh.kept_exactly.faces.empty()) {
-    EQMESH_ASSIGN_OR_RETURN(MeshChunkEncoding kept,
-                            EncodeMeshWithDraco(mesh.kept_exactly, bitstream::kKeptBits, false));
-    p.kept_bytes = std::move(kept.bytes);
+    // The compact chunk wherever it can hold the kept parts, so that a decoder built
+    // without Draco reads the stream; Draco for non-manifold or inconsistently
+    // oriented parts.
+    auto compact = EncodeCompactBase(mesh.kept_exactly, bitstream::kKeptBits);
+    if (compact.ok()) {
+      p.kept_bytes = std::move(compact->bytes);
+      p.kept_compact = true;
+    } else if (compact.status().code() == StatusCode::kUnsupportedFeature) {
+      EQMESH_ASSIGN_OR_RETURN(MeshChunkEncoding kept,
+                              EncodeMeshWithDraco(mesh.kept_exactly, bitstream::kKeptBits, false));
+      p.kept_bytes = std::move(kept.bytes);
+    } else {
+      return compact.status().WithContext("kept-exactly components");
+    }
   }
   return p;
 }
@@ -178,6 +191,10 @@ StreamHeader MakeHeader(const Prepared& prep, const EncodeOptions& options, int6
   header.quantum = prep.quantum;
   if (options.coder == bitstream::CoderId::kEq && options.eq_tangential_context) {
     header.flags |= bitstream::kTangentialContext;
+  }
+  if (prep.kept_compact) {
+    header.flags |= bitstream::kCompactKept;
+    header.version_minor = bitstream::kVersionMinorCompactKept;
   }
   return header;
 }

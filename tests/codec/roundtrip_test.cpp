@@ -114,6 +114,32 @@ TEST(RoundTrip, KeptExactlyComponentsSurvive) {
   EXPECT_EQ(decoded->kept_exactly.faces.size(), 4u);
 }
 
+// Kept parts travel in the compact chunk where it can hold them (a decoder built
+// without Draco then reads the stream), in Draco where it cannot (a non-manifold
+// part), and survive to 20 bits either way.
+TEST(RoundTrip, KeptPartsUseTheCompactChunkWhereTheyCan) {
+  SemiRegularMesh mesh = testing::MakeBumpySphereWithKept(2);
+  for (const bool manifold : {true, false}) {
+    if (!manifold) {  // a fin: a third face on the edge (0, 1)
+      mesh.kept_exactly.positions.push_back(Vec3(2.05, -0.1, 0.05));
+      mesh.kept_exactly.faces.push_back({0, 1, 4});
+    }
+    auto bytes = Encode(mesh, EncodeOptions{});
+    ASSERT_TRUE(bytes.ok()) << bytes.status().ToString();
+    auto info = ReadStreamInfo(bytes->data(), bytes->size());
+    ASSERT_TRUE(info.ok());
+    EXPECT_TRUE(info->has_kept_exactly);
+    EXPECT_EQ(info->has_compact_kept, manifold);
+    EXPECT_EQ(info->version_minor, manifold ? bitstream::kVersionMinorCompactKept : bitstream::kVersionMinorWithoutAtlas);
+    auto decoded = DecodeSemiRegular(bytes->data(), bytes->size());
+    ASSERT_TRUE(decoded.ok()) << decoded.status().ToString();
+    ASSERT_EQ(decoded->kept_exactly.positions.size(), mesh.kept_exactly.positions.size());
+    EXPECT_EQ(decoded->kept_exactly.faces.size(), mesh.kept_exactly.faces.size());
+    EXPECT_LE(testing::MaxNearestDistance(decoded->kept_exactly.positions, mesh.kept_exactly.positions),
+              std::ldexp(0.3, -bitstream::kKeptBits));
+  }
+}
+
 // Encodes `mesh` (as if from 500 input vertices) for `target` bpv and checks
 // the rate is met within 3 % and reported as the stream's own size.
 void ExpectRateMet(const SemiRegularMesh& mesh, double target) {

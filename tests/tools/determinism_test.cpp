@@ -21,9 +21,12 @@
 namespace eqmesh::testing {
 namespace {
 
-// Version 1.3 (session 13): context-modelled tangential components (coding/eq/).
-constexpr uint64_t kGoldenStreamHash = 0xd6c0df72fb7b0967ull;
-constexpr uint64_t kGoldenGeometryHash = 0x5d1bc8753fe82da1ull;
+// Version 1.5: the kept tetrahedron in a compact chunk (kCompactKept).
+constexpr uint64_t kGoldenStreamHash = 0x940a7f7c474902feull;
+constexpr uint64_t kGoldenGeometryHash = 0x00dcd2c939480a35ull;
+// The version-1.3 golden (context-modelled tangential components, coding/eq/; a Draco
+// kept chunk).
+constexpr uint64_t kV13GoldenGeometryHash = 0x5d1bc8753fe82da1ull;
 // The version-1.2 golden of session 9 (the compact base chunk, coding/compact_base/).
 constexpr uint64_t kV12GoldenGeometryHash = 0xc89352b22a77c1e0ull;
 // The version-1.1 golden of session 9 (Draco base chunk, its depth chosen with the
@@ -78,7 +81,8 @@ TEST(Determinism, GoldenStreamAndItsGeometryHaveThePinnedHashes) {
       {"golden_v1_1_single_lambda.eqm", kSingleLambdaGoldenGeometryHash},
       {"golden_v1_1_full_base_weight.eqm", kFullBaseWeightGoldenGeometryHash},
       {"golden_v1_1.eqm", kV11GoldenGeometryHash},
-      {"golden_v1_2.eqm", kV12GoldenGeometryHash}};
+      {"golden_v1_2.eqm", kV12GoldenGeometryHash},
+      {"golden_v1_3.eqm", kV13GoldenGeometryHash}};
   for (const auto& [name, hash] : earlier) {
     const std::vector<uint8_t> old = ReadFileOrEmpty(data + name);
     auto old_mesh = Decode(old.data(), old.size());

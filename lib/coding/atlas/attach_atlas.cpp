@@ -1,5 +1,7 @@
 #include "coding/atlas/attach_atlas.h"
 
+#include <algorithm>
+
 #include "coding/stream_header.h"
 
 namespace eqmesh {
@@ -13,7 +15,7 @@ StatusOr<std::vector<uint8_t>> AttachAtlas(const std::vector<uint8_t>& stream, c
   const std::vector<uint8_t> chunk = WriteAtlasChunk(atlas);
   header.flags = static_cast<uint8_t>(header.flags | bitstream::kHasAtlas);
   header.atlas_size = chunk.size();
-  header.version_minor = bitstream::kVersionMinor;
+  header.version_minor = std::max(header.version_minor, bitstream::kVersionMinorAtlas);
   std::vector<uint8_t> out = WriteStreamHeader(header);
   const auto body = stream.begin() + static_cast<std::ptrdiff_t>(header_size);
   out.insert(out.end(), body, body + static_cast<std::ptrdiff_t>(front));
