@@ -4,7 +4,7 @@
 # decoders compile the same files. The Draco base-chunk reader is not listed: the
 # native build adds coding/base_mesh_decoder.cpp (libdraco), the web build a JS
 # bridge.
-set(EQMESH_MESH_DECODER_SOURCES mesh/mesh.cpp mesh/semi_regular.cpp)
+set(EQMESH_MESH_DECODER_SOURCES mesh/mesh.cpp mesh/semi_regular.cpp mesh/adaptive_level.cpp)
 set(EQMESH_ENTROPY_SOURCES
   coding/entropy/byte_io.cpp
   coding/entropy/range_coder.cpp

@@ -50,10 +50,14 @@ int RunDecode(int argc, char** argv) {
   CLI::App app{"Decode an eqmesh stream (.eqm) or a glTF with EXT_normal_mesh_compression (.glb) to a mesh", argv[0]};
   std::string in_path, out_path;
   int level = -1;
+  uint64_t max_triangles = 0;
   bool json = false, allow_truncated = false;
   app.add_option("IN", in_path, "eqmesh stream (.eqm) or glTF with EXT_normal_mesh_compression (.glb .gltf)")->required();
   app.add_option("OUT", out_path, "output mesh (.ply .obj .off .glb)")->required();
   app.add_option("--level", level, "decode up to this level (-1: all)")->check(CLI::Range(-1, 64));
+  app.add_option("--max-triangles", max_triangles,
+                 "at most this many triangles: faces are refined where the surface needs them, not level by "
+                 "level, and closed without cracks (0: every triangle of the decoded levels)");
   app.add_flag("--allow-truncated", allow_truncated,
                "decode the complete levels of a truncated stream instead of failing");
   app.add_flag("--json", json, "print one JSON object with the decode report");
@@ -70,6 +74,7 @@ int RunDecode(int argc, char** argv) {
   DecodeOptions options;
   options.max_level = level;
   options.allow_truncated = allow_truncated;
+  options.max_triangles = max_triangles;
   DecodeInfo info;
   auto mesh = Decode(bytes->data(), bytes->size(), options, &info);
   if (!mesh.ok()) return Fail(kName, in_path + ": " + mesh.status().message());

@@ -11,6 +11,7 @@
 #include "coding/level_synthesis.h"
 #include "coding/stream_header.h"
 #include "coding/zerotree_decoder.h"
+#include "mesh/adaptive_level.h"
 
 namespace eqmesh {
 namespace {
@@ -180,6 +181,7 @@ std::vector<Face> AtlasFaces(const SemiRegularMesh& mesh) {
 StatusOr<Mesh> Decode(const uint8_t* data, size_t size, const DecodeOptions& options,
                       DecodeInfo* info) {
   EQMESH_ASSIGN_OR_RETURN(SemiRegularMesh mesh, DecodeSemiRegular(data, size, options, info));
+  if (options.max_triangles > 0) return ExtractAdaptiveLevel(mesh, options.max_triangles);
   const int level = mesh.hierarchy.levels();
   return ExtractLevel(std::move(mesh), level);
 }

@@ -94,6 +94,10 @@ struct DecodeOptions {
   // true -> decode the levels whose chunks are complete. A prefix that ends before
   // the base (and kept) chunks end is always an error.
   bool allow_truncated = false;
+  // Triangle budget of Decode's mesh (0: none). Levels whose uniform mesh is
+  // heavier are cut down adaptively: faces split where the surface needs them,
+  // closed conformingly (mesh/adaptive_level.h).
+  uint64_t max_triangles = 0;
 };
 
 struct DecodeInfo {
