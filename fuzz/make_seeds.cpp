@@ -146,7 +146,7 @@ void WriteGltfSeeds(const fs::path& dir) {
   for (const Variant& v : kVariants) {
     SemiRegularMesh mesh;
     const std::vector<uint8_t> stream = EncodeVariant(v, &mesh);
-    const gltf::DecodedStream decoded = OrDie(decode(stream.data(), stream.size(), -1), v.name);
+    const gltf::DecodedStream decoded = OrDie(decode(stream.data(), stream.size(), -1, 0), v.name);
     const Mesh plain = ExtractLevel(mesh, mesh.hierarchy.levels());
     for (const bool fallback : {false, true}) {
       tinygltf::Model model =

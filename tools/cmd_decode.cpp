@@ -20,9 +20,11 @@ constexpr const char* kName = "decode";
 
 // Compressed glTF in: decode every EXT_normal_mesh_compression primitive. A .glb
 // output keeps the whole scene as plain glTF; OBJ/PLY/OFF get the flattened geometry.
-int DecodeGltf(const std::string& in_path, const std::string& out_path, int level, bool json) {
+int DecodeGltf(const std::string& in_path, const std::string& out_path, int level, int64_t max_triangles,
+               bool json) {
   gltf::LoadOptions options;
   options.max_level = level;
+  options.max_triangles = max_triangles;
   const auto start = std::chrono::steady_clock::now();
   auto model = gltf::LoadGltf(in_path, options);
   if (!model.ok()) return Fail(kName, model.status().message());
@@ -50,14 +52,16 @@ int RunDecode(int argc, char** argv) {
   CLI::App app{"Decode an eqmesh stream (.eqm) or a glTF with EXT_normal_mesh_compression (.glb) to a mesh", argv[0]};
   std::string in_path, out_path;
   int level = -1;
-  uint64_t max_triangles = 0;
+  int64_t max_triangles = -1;
   bool json = false, allow_truncated = false;
   app.add_option("IN", in_path, "eqmesh stream (.eqm) or glTF with EXT_normal_mesh_compression (.glb .gltf)")->required();
   app.add_option("OUT", out_path, "output mesh (.ply .obj .off .glb)")->required();
   app.add_option("--level", level, "decode up to this level (-1: all)")->check(CLI::Range(-1, 64));
   app.add_option("--max-triangles", max_triangles,
                  "at most this many triangles: faces are refined where the surface needs them, not level by "
-                 "level, and closed without cracks (0: every triangle of the decoded levels)");
+                 "level, and closed without cracks. 0: every triangle of the decoded levels; default: a .glb's "
+                 "recorded budget (its source's triangle count), none for a .eqm stream")
+      ->check(CLI::Range(int64_t{-1}, int64_t{1} << 40));
   app.add_flag("--allow-truncated", allow_truncated,
                "decode the complete levels of a truncated stream instead of failing");
   app.add_flag("--json", json, "print one JSON object with the decode report");
@@ -67,14 +71,14 @@ int RunDecode(int argc, char** argv) {
     return app.exit(e);
   }
   if (IsSameFile(in_path, out_path)) return Fail(kName, out_path + ": is the input file; write the output elsewhere");
-  if (EndsWith(in_path, ".glb") || EndsWith(in_path, ".gltf")) return DecodeGltf(in_path, out_path, level, json);
+  if (EndsWith(in_path, ".glb") || EndsWith(in_path, ".gltf")) return DecodeGltf(in_path, out_path, level, max_triangles, json);
   auto bytes = ReadFileBytes(in_path, kMaxStreamFileBytes);
   if (!bytes.ok()) return Fail(kName, bytes.status().message());
   const auto start = std::chrono::steady_clock::now();
   DecodeOptions options;
   options.max_level = level;
   options.allow_truncated = allow_truncated;
-  options.max_triangles = max_triangles;
+  options.max_triangles = max_triangles < 0 ? 0 : static_cast<uint64_t>(max_triangles);
   DecodeInfo info;
   auto mesh = Decode(bytes->data(), bytes->size(), options, &info);
   if (!mesh.ok()) return Fail(kName, in_path + ": " + mesh.status().message());

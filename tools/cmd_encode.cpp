@@ -41,6 +41,7 @@ struct EncodeArgs {
   int threads = 0;
   double min_psnr = 60.0;
   int texture_size = 0;
+  int64_t max_triangles = -1;
   bool strict = false;
   bool repair = false, measure = false, json = false, fallback = false;
   bool draco_base = false;
@@ -86,6 +87,7 @@ EncodeOptions ToEncodeOptions(const EncodeArgs& a) {
   o.tangential_factor = a.tangential_factor;
   o.measure_psnr = a.measure;
   o.draco_base = a.draco_base;
+  o.max_triangles = a.max_triangles < 0 ? 0 : static_cast<uint64_t>(a.max_triangles);
   return o;
 }
 
@@ -134,6 +136,7 @@ nlohmann::json ToJson(const gltf::PrimitiveOutcome& p) {
   j["stream_bytes"] = p.stream_bytes;
   j["levels"] = p.levels;
   if (p.psnr_db > 0) j["psnr_db"] = p.psnr_db;
+  if (!p.note.empty()) j["note"] = p.note;
   return j;
 }
 
@@ -154,6 +157,8 @@ void PrintGlbSummary(const std::string& out_path, const gltf::ConvertReport& rep
                 p.levels);
     if (p.psnr_db > 0) std::printf(", PSNR %.2f dB", p.psnr_db);
     std::printf("\n");
+    if (!p.note.empty()) std::fprintf(stderr, "eqmesh encode: warning: mesh %d primitive %d %s\n", p.mesh, p.primitive,
+                                      p.note.c_str());
   }
 }
 
@@ -169,6 +174,7 @@ int EncodeToGlb(const EncodeArgs& a) {
   options.strict = a.strict;
   options.min_psnr = a.min_psnr;
   options.texture_size = static_cast<uint32_t>(a.texture_size);
+  options.max_triangles = a.max_triangles;
   options.remesh.progress = TerminalProgress(a.json);
   options.codec.progress = options.remesh.progress;
   const auto start = std::chrono::steady_clock::now();
@@ -306,6 +312,11 @@ int RunEncode(int argc, char** argv) {
                  ".glb output: leave a primitive unchanged (with a warning) when its decoded stream measures "
                  "below this many dB against it (default 60; 0: no floor)")
       ->check(CLI::Range(0.0, 300.0));
+  app.add_option("--max-triangles", a.max_triangles,
+                 "the triangle budget the output is decoded within: --psnr and --measure are of that decode, "
+                 "and a .glb records it for loaders (default: a .glb primitive's own triangle count, so the "
+                 "decoded asset is never heavier than its source; none for a .eqm stream; 0: none)")
+      ->check(CLI::Range(int64_t{-1}, int64_t{1} << 40));
   app.add_option("--texture-size", a.texture_size,
                  ".glb output: side in texels of the atlas textures a textured primitive gets (default 0: "
                  "each input texture's own size)")

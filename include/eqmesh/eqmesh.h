@@ -23,7 +23,9 @@ extern "C" {
 
 typedef struct eqmesh_decode_options {
   int max_level;          /* finest level to decode; -1: all */
-  uint64_t max_triangles; /* 0: no limit; else the finest level within it (never above max_level) */
+  uint64_t max_triangles; /* 0: no limit; else at most this many triangles, refined where the surface
+                             needs them and closed without cracks (streams with an atlas: the finest
+                             uniform level within it) */
   int threads;            /* worker threads, 0: all cores (the output does not depend on it) */
 } eqmesh_decode_options;
 

@@ -81,32 +81,14 @@ void FillMesh(const eqmesh::DecodedGeometry& g, int level, int levels, eqmesh_me
   *out = m;
 }
 
-// The finest level within the options' limits (-1: all): max_level, then
-// max_triangles, counted from the base, which a level-0 decode gives cheaply
-// (level 0 when even the base exceeds it).
-eqmesh::StatusOr<int> ChooseLevel(const uint8_t* data, size_t size, const eqmesh_decode_options& o) {
-  if (o.max_triangles == 0) return o.max_level;
-  eqmesh::DecodeOptions base_only;
-  base_only.max_level = 0;
-  base_only.allow_truncated = true;
-  eqmesh::DecodeInfo info;
-  EQMESH_ASSIGN_OR_RETURN(const eqmesh::SemiRegularMesh base, eqmesh::DecodeSemiRegular(data, size, base_only, &info));
-  int level = o.max_level < 0 ? info.levels_in_stream : std::min(o.max_level, info.levels_in_stream);
-  const uint64_t base_faces = base.hierarchy.BaseFaces().size(), kept = base.kept_exactly.faces.size();
-  while (level > 0 && eqmesh::SemiRegularHierarchy::FinestFaceCount(base_faces, level) + kept > o.max_triangles) {
-    --level;
-  }
-  return level;
-}
-
 // `prefix`: the bytes may end after the chosen level's chunk (as they may when
 // the options limit the level).
 eqmesh::Status Decode(const uint8_t* data, size_t size, const eqmesh_decode_options& o, bool prefix,
                       eqmesh_mesh* out) {
-  EQMESH_ASSIGN_OR_RETURN(const int level, ChooseLevel(data, size, o));
   eqmesh::DecodeOptions options;
-  options.max_level = level;
-  options.allow_truncated = prefix || o.max_level >= 0 || o.max_triangles > 0;
+  options.max_level = o.max_level;
+  options.max_triangles = o.max_triangles;
+  options.allow_truncated = prefix || o.max_level >= 0;
   eqmesh::DecodeInfo info;
   EQMESH_ASSIGN_OR_RETURN(const eqmesh::DecodedGeometry g, eqmesh::DecodeGeometry(data, size, options, &info));
   FillMesh(g, info.levels_decoded, info.levels_in_stream, out);

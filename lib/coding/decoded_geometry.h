@@ -28,7 +28,9 @@ DecodedGeometry ExtractDecodedGeometry(const SemiRegularMesh& decoded, const Atl
 DecodedGeometry ExtractDecodedGeometry(SemiRegularMesh&& decoded);
 
 // DecodeSemiRegular, DecodeAtlas and ExtractDecodedGeometry in one: what a loader
-// makes of `size` bytes of a stream.
+// makes of `size` bytes of a stream. options.max_triangles cuts the result down
+// adaptively (mesh/adaptive_level.h); with an atlas, to the finest uniform level
+// within it (seams are split per level).
 StatusOr<DecodedGeometry> DecodeGeometry(const uint8_t* data, size_t size, const DecodeOptions& options,
                                          DecodeInfo* info);
 

@@ -61,6 +61,10 @@ struct EncodeOptions {
   const Mesh* original = nullptr;
   // Decode the final stream and measure its PSNR against *original.
   bool measure_psnr = false;
+  // Triangle budget the stream is meant to be decoded within (0: none): PSNR
+  // targets and measurements are then of that decode (DecodeOptions::max_triangles),
+  // so the rate-distortion choices are made for what a loader shows.
+  uint64_t max_triangles = 0;
   // Code the base with Draco (streams version 1.1 decoders read) instead of the
   // compact base chunk (format 1.2, compact_base/): it costs the bunny 0.5 dB at 0.25 bpv.
   bool draco_base = false;

@@ -92,6 +92,7 @@ Status PrimitiveCompressor::Replace(tinygltf::Primitive* p, const AppearancePlan
   ext.position_accessor = accessors.position;
   ext.normal_accessor = accessors.normal;
   ext.texcoord_accessor = accessors.texcoord;
+  ext.triangle_budget = geometry.triangle_budget;
   RememberOldData(*p);
   // NORMAL is always declared: without it glTF asks for flat shading, which shows
   // every facet of a remeshed scan.
@@ -145,11 +146,14 @@ PrimitiveOutcome PrimitiveCompressor::Compress(size_t mesh_index, size_t primiti
     return out;
   }
   out.compressed = true;
-  out.output_vertices = geometry->decoded.positions.size();
-  out.output_triangles = geometry->decoded.faces.size();
+  // What a loader decodes by default: within the recorded budget.
+  const Mesh& loaded = geometry->loaded.faces.empty() ? geometry->decoded : geometry->loaded;
+  out.output_vertices = loaded.positions.size();
+  out.output_triangles = loaded.faces.size();
   out.stream_bytes = geometry->stream.size();
   out.levels = static_cast<int>(geometry->chunk_lengths.size()) - 1;
   out.psnr_db = geometry->psnr_db;
+  out.note = geometry->note;
   return out;
 }
 

@@ -51,6 +51,9 @@ struct CompressedGeometry {
   std::vector<std::array<float, 2>> texcoords;  // TEXCOORD_0 when the primitive has an atlas
   std::vector<std::vector<uint8_t>> textures;   // per TextureJob: the atlas image, same format
   double psnr_db = 0;                   // decoded vs. input, when measured (else 0)
+  uint64_t triangle_budget = 0;         // the extension's triangleBudget (0: none)
+  Mesh loaded;                          // what a loader decodes within it (empty: `decoded`)
+  std::string note;                     // a warning for the report (empty: none)
 };
 
 // Compresses one primitive; `label` ("mesh 0 primitive 1") is for progress and
@@ -83,6 +86,7 @@ struct PrimitiveOutcome {
   size_t stream_bytes = 0;
   int levels = 0;
   double psnr_db = 0;
+  std::string note;  // a warning about a compressed primitive (empty: none)
 };
 
 struct ConvertReport {

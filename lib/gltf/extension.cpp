@@ -94,6 +94,10 @@ StatusOr<NormalMeshExtension> ParseExtension(const tinygltf::Value& value) {
   }
   EQMESH_RETURN_IF_ERROR(CheckRangesTile(ext.level_ranges));
   EQMESH_RETURN_IF_ERROR(ReadAttributes(value.Get("attributes"), &ext));
+  if (value.Has("triangleBudget") &&
+      (!ReadCount(value.Get("triangleBudget"), &ext.triangle_budget) || ext.triangle_budget == 0)) {
+    return ParseError("triangleBudget is not a positive integer");
+  }
   return ext;
 }
 
@@ -122,6 +126,7 @@ tinygltf::Value ExtensionToValue(const NormalMeshExtension& ext) {
   object["levels"] = tinygltf::Value(ext.levels);
   object["levelByteRanges"] = tinygltf::Value(std::move(ranges));
   object["attributes"] = tinygltf::Value(std::move(attributes));
+  if (ext.triangle_budget > 0) object["triangleBudget"] = CountValue(ext.triangle_budget);
   return tinygltf::Value(std::move(object));
 }
 

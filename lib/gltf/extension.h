@@ -34,6 +34,9 @@ struct NormalMeshExtension {
   int position_accessor = -1;
   int normal_accessor = -1;              // -1 when the primitive has no NORMAL
   int texcoord_accessor = -1;            // TEXCOORD_0 from the stream's atlas; -1 without
+  // The source primitive's triangle count: loaders decode at most this many
+  // triangles unless asked otherwise (0: absent, no default budget).
+  uint64_t triangle_budget = 0;
 };
 
 // Reads the extension object. Checks the JSON shape and the rules that need nothing

@@ -43,13 +43,42 @@ StatusOr<CompressedGeometry> CompressWithEqmesh(const ConvertOptions& options, c
   EncodeOptions codec = options.codec;
   codec.input_vertices = CountReferencedVertices(mesh);
   codec.original = &mesh;
+  // Textured primitives are decoded whole: atlas seams are split per uniform level,
+  // which an adaptive cut does not follow.
+  const uint64_t budget = textured                   ? 0
+                          : options.max_triangles < 0 ? primitive.mesh.faces.size()
+                                                      : static_cast<uint64_t>(options.max_triangles);
   // A rate or PSNR target measures the stream it chooses (as `encode x.eqm`
   // reports it); a bare lambda needs a measurement of its own for the floor.
   const bool targeted = codec.target_bpv > 0 || codec.target_psnr > 0;
   if (options.min_psnr > 0 && !targeted) codec.measure_psnr = true;
   EncodeReport encode_report;
   CompressedGeometry out;
-  EQMESH_ASSIGN_OR_RETURN(out.stream, EncodeChoosingLevels(remeshed, codec, &encode_report));
+  codec.max_triangles = budget;
+  auto stream = EncodeChoosingLevels(remeshed, codec, &encode_report);
+  const bool floor_missed = stream.ok() && options.min_psnr > 0 && encode_report.psnr_db < options.min_psnr;
+  if (budget > 0 && options.max_triangles < 0 &&
+      (floor_missed || (!stream.ok() && stream.status().code() == StatusCode::kTargetOutOfReach))) {
+    // The source's own triangle count cannot carry the quality asked for: decode
+    // whole rather than ship it broken, and say so.
+    char text[160];
+    std::snprintf(text, sizeof(text), "decoded whole, beyond its %llu triangles: within them ",
+                  static_cast<unsigned long long>(budget));
+    out.note = text;
+    if (stream.ok()) {
+      std::snprintf(text, sizeof(text), "it measures %.2f dB, below the %.2f dB floor", encode_report.psnr_db,
+                    options.min_psnr);
+      out.note += text;
+    } else {
+      out.note += stream.status().message();
+    }
+    codec.max_triangles = 0;
+    encode_report = EncodeReport();
+    stream = EncodeChoosingLevels(remeshed, codec, &encode_report);
+  }
+  if (!stream.ok()) return stream.status();
+  out.stream = std::move(stream).value();
+  out.triangle_budget = codec.max_triangles;
   if (options.min_psnr > 0 && encode_report.psnr_db < options.min_psnr) {
     EQMESH_ASSIGN_OR_RETURN(const double ceiling, RemeshCeilingPsnr(remeshed, mesh));
     char text[200];
@@ -65,6 +94,11 @@ StatusOr<CompressedGeometry> CompressWithEqmesh(const ConvertOptions& options, c
   EQMESH_ASSIGN_OR_RETURN(out.chunk_lengths, EqmeshStreamLayout()(out.stream.data(), out.stream.size()));
   // Placeholder counts and bounds come from the decoded data (spec rule 6).
   EQMESH_ASSIGN_OR_RETURN(out.decoded, Decode(out.stream.data(), out.stream.size()));
+  if (out.triangle_budget > 0 && out.decoded.faces.size() > out.triangle_budget) {
+    DecodeOptions within;
+    within.max_triangles = out.triangle_budget;
+    EQMESH_ASSIGN_OR_RETURN(out.loaded, Decode(out.stream.data(), out.stream.size(), within));
+  }
   return out;
 }
 

@@ -37,6 +37,12 @@ struct ConvertOptions {
   // Side of a textured primitive's atlas images in texels; 0: each input
   // texture's own size.
   uint32_t texture_size = 0;
+  // Triangle budget each primitive is decoded within, recorded as the extension's
+  // triangleBudget (loaders' default) and measured by PSNR targets: -1: the
+  // primitive's own triangle count (a decoded asset is never heavier than its
+  // source); 0: none; N: N. Textured primitives get none (their atlas seams are
+  // split per uniform level).
+  int64_t max_triangles = -1;
 };
 
 // The remesher + encoder as a GeometryCompressor (also measures the decoded PSNR

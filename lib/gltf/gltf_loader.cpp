@@ -105,10 +105,16 @@ Status PrimitiveDecoder::Decode(size_t mesh_index, size_t primitive_index, Primi
   EQMESH_RETURN_IF_ERROR(CheckExtensionAgainstModel(ext, p, *model_, fallback_));
   const int level = options_.max_level < 0 ? ext.levels : std::min(options_.max_level, ext.levels);
   EQMESH_ASSIGN_OR_RETURN(const std::vector<uint8_t> bytes, StreamPrefix(*model_, ext, level));
+  const uint64_t budget =
+      options_.max_triangles < 0 ? ext.triangle_budget : static_cast<uint64_t>(options_.max_triangles);
   EQMESH_ASSIGN_OR_RETURN(DecodedStream decoded,
-                          decoder_(bytes.data(), bytes.size(), options_.max_level < 0 ? -1 : level));
+                          decoder_(bytes.data(), bytes.size(), options_.max_level < 0 ? -1 : level, budget));
   EQMESH_RETURN_IF_ERROR(CheckStreamAgreesWithJson(decoded, ext, level));
-  if (level == ext.levels) EQMESH_RETURN_IF_ERROR(CheckPlaceholderCounts(*model_, p, ext, decoded.mesh));
+  // The placeholders describe the whole finest level, which a budget may cut.
+  const uint64_t full_triangles = model_->accessors[static_cast<size_t>(p.indices)].count / 3;
+  if (level == ext.levels && (budget == 0 || budget >= full_triangles)) {
+    EQMESH_RETURN_IF_ERROR(CheckPlaceholderCounts(*model_, p, ext, decoded.mesh));
+  }
 
   MarkStaleData(p, ext);
   GeometryAccessors accessors{ClaimAccessor(ext.position_accessor), ClaimAccessor(ext.normal_accessor),

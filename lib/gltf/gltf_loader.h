@@ -32,6 +32,11 @@ struct LoadOptions {
   // Finest level to decode: -1 = every level of each stream; K >= 0 decodes
   // min(K, levels) and reads only the bytes that level needs.
   int max_level = -1;
+  // Triangle budget of each decoded primitive: -1: the extension's triangleBudget
+  // (the source's triangle count, when the encoder recorded it; else none); 0:
+  // none; N: N. Levels heavier than it are cut down adaptively
+  // (DecodeOptions::max_triangles).
+  int64_t max_triangles = -1;
   // Stream decoder; empty = the eqmesh codec. Tests substitute a stand-in.
   StreamDecoderFn decoder;
 };

@@ -21,9 +21,10 @@ std::vector<uint64_t> ChunkLengths(const StreamInfo& info) {
 }  // namespace
 
 StreamDecoderFn EqmeshStreamDecoder() {
-  return [](const uint8_t* data, size_t size, int max_level) -> StatusOr<DecodedStream> {
+  return [](const uint8_t* data, size_t size, int max_level, uint64_t max_triangles) -> StatusOr<DecodedStream> {
     DecodeOptions options;
     options.max_level = max_level;
+    options.max_triangles = max_triangles;
     // A loader asking for level K passes only the bytes up to the end of chunk K.
     options.allow_truncated = max_level >= 0;
     DecodeInfo info;

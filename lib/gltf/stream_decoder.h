@@ -30,9 +30,10 @@ struct DecodedStream {
 };
 
 // Decodes `size` bytes (the stream, or a prefix reaching the end of level
-// `max_level`'s chunk) up to `max_level` (-1: all levels).
+// `max_level`'s chunk) up to `max_level` (-1: all levels), within `max_triangles`
+// (0: no budget; DecodeOptions::max_triangles).
 using StreamDecoderFn =
-    std::function<StatusOr<DecodedStream>(const uint8_t* data, size_t size, int max_level)>;
+    std::function<StatusOr<DecodedStream>(const uint8_t* data, size_t size, int max_level, uint64_t max_triangles)>;
 
 // Chunk lengths of the stream whose header starts `data` (`size` may be a prefix):
 // what levelByteRanges must restate.

@@ -86,7 +86,7 @@ std::vector<uint8_t> MakeFakeStream(const Mesh& base, int levels) {
   return out;
 }
 
-StatusOr<gltf::DecodedStream> DecodeFakeStream(const uint8_t* data, size_t size, int max_level) {
+StatusOr<gltf::DecodedStream> DecodeFakeStream(const uint8_t* data, size_t size, int max_level, uint64_t) {
   Reader r(data, size);
   gltf::DecodedStream out;
   Mesh base;

@@ -22,7 +22,9 @@ namespace eqmesh::testing {
 std::vector<uint8_t> MakeFakeStream(const Mesh& base, int levels);
 
 // StreamDecoderFn over the fake format.
-StatusOr<gltf::DecodedStream> DecodeFakeStream(const uint8_t* data, size_t size, int max_level);
+// (The fake format has no budget: max_triangles is ignored.)
+StatusOr<gltf::DecodedStream> DecodeFakeStream(const uint8_t* data, size_t size, int max_level,
+                                               uint64_t max_triangles = 0);
 
 // GeometryCompressor: the input mesh becomes the base, refined `levels` times.
 gltf::GeometryCompressor FakeCompressor(int levels);

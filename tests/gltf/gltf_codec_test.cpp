@@ -115,6 +115,53 @@ TEST(GltfCodec, LoadedModelMeetsThePromisedPsnr) {
   EXPECT_GE(psnr, kTargetPsnr - kVertexMeterTolerance);
 }
 
+// A compressed primitive records its source's triangle count and loaders decode
+// within it by default (issue: decoded assets no heavier than their source); 0
+// asks for every triangle. Where the budget cannot carry the PSNR asked for (the
+// 60 dB pebble above), the primitive is decoded whole and the report says why.
+TEST(GltfCodec, LoadersDecodeWithinTheSourcesTriangleCountByDefault) {
+  const Converted& whole = PebbleConverted();
+  ASSERT_TRUE(whole.status.ok()) << whole.status.ToString();
+  const std::string input = testing::TempPath("pebble_budget.glb");
+  const std::string compressed = testing::TempPath("pebble_budget_compressed.glb");
+  ASSERT_TRUE(gltf::WriteGlb(testing::MakeSingleMeshModel(Pebble()), input).ok());
+  gltf::ConvertOptions options = Options();
+  options.codec.target_psnr = 0;  // one fixed-lambda encode; its 3 levels carry 5,120 triangles
+  options.codec.lambda = 1.0;
+  options.min_psnr = 45.0;
+  auto report = gltf::ConvertToCompressedGltf(input, compressed, options);
+  ASSERT_TRUE(report.ok()) << report.status().ToString();
+  ASSERT_EQ(report->compressed, 1u);
+  EXPECT_TRUE(report->primitives[0].note.empty()) << report->primitives[0].note;
+  const size_t source = Pebble().faces.size();
+  EXPECT_LE(report->primitives[0].output_triangles, source);
+  auto model = gltf::ReadGltfModel(compressed);
+  ASSERT_TRUE(model.ok());
+  auto ext = gltf::ParseExtension(model->meshes[0].primitives[0].extensions.at(gltf::kExtensionName));
+  ASSERT_TRUE(ext.ok()) << ext.status().ToString();
+  EXPECT_EQ(ext->triangle_budget, source);
+  auto loaded = gltf::LoadGltf(compressed);
+  ASSERT_TRUE(loaded.ok()) << loaded.status().ToString();
+  auto mesh = gltf::ReadTrianglePrimitive(*loaded, loaded->meshes[0].primitives[0]);
+  ASSERT_TRUE(mesh.ok());
+  EXPECT_LE(mesh->faces.size(), source);
+  EXPECT_EQ(mesh->faces.size(), report->primitives[0].output_triangles);
+  gltf::LoadOptions every;
+  every.max_triangles = 0;
+  auto full = gltf::LoadGltf(compressed, every);
+  ASSERT_TRUE(full.ok()) << full.status().ToString();
+  auto full_mesh = gltf::ReadTrianglePrimitive(*full, full->meshes[0].primitives[0]);
+  ASSERT_TRUE(full_mesh.ok());
+  EXPECT_GT(full_mesh->faces.size(), source);
+  // The 60 dB pebble could not keep the budget: whole, no triangleBudget, a note.
+  EXPECT_NE(whole.report.primitives[0].note.find("decoded whole"), std::string::npos);
+  auto whole_model = gltf::ReadGltfModel(whole.compressed);
+  ASSERT_TRUE(whole_model.ok());
+  auto whole_ext = gltf::ParseExtension(whole_model->meshes[0].primitives[0].extensions.at(gltf::kExtensionName));
+  ASSERT_TRUE(whole_ext.ok());
+  EXPECT_EQ(whole_ext->triangle_budget, 0u);
+}
+
 TEST(GltfCodec, EachMaxLevelGivesThatLevelsVertexCount) {
   const Converted& c = PebbleConverted();
   ASSERT_TRUE(c.status.ok()) << c.status.ToString();

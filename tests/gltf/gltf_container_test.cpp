@@ -69,7 +69,9 @@ nlohmann::json SpecExtensionObject() {
 gltf::LoadOptions FakeLoad(int max_level = -1) {
   gltf::LoadOptions options;
   options.max_level = max_level;
-  options.decoder = testing::DecodeFakeStream;
+  options.decoder = [](const uint8_t* data, size_t size, int level, uint64_t budget) {
+    return testing::DecodeFakeStream(data, size, level, budget);
+  };
   return options;
 }
 
@@ -108,7 +110,7 @@ gltf::GeometryCompressor EmbeddedFakeCompressor(int levels) {
 gltf::LoadOptions EmbeddedFakeLoad(int coder, int max_level = -1) {
   gltf::LoadOptions options;
   options.max_level = max_level;
-  options.decoder = [coder](const uint8_t* data, size_t size, int level) -> StatusOr<gltf::DecodedStream> {
+  options.decoder = [coder](const uint8_t* data, size_t size, int level, uint64_t) -> StatusOr<gltf::DecodedStream> {
     EQMESH_ASSIGN_OR_RETURN(gltf::DecodedStream d, testing::DecodeFakeStream(data, size, level));
     return AsEmbedded(std::move(d), coder);
   };
@@ -169,9 +171,21 @@ TEST(GltfExtension, RejectsObjectsBreakingTheRules) {
   with("fractional length", [](nlohmann::json& j) { j["levelByteRanges"][0][1] = 2140.5; });
   with("no POSITION", [](nlohmann::json& j) { j["attributes"].erase("POSITION"); });
   with("extra attribute", [](nlohmann::json& j) { j["attributes"]["COLOR_0"] = 3; });
+  with("zero triangle budget", [](nlohmann::json& j) { j["triangleBudget"] = 0; });
+  with("negative triangle budget", [](nlohmann::json& j) { j["triangleBudget"] = -5; });
+  with("fractional triangle budget", [](nlohmann::json& j) { j["triangleBudget"] = 100.5; });
+  with("string triangle budget", [](nlohmann::json& j) { j["triangleBudget"] = "100"; });
   for (const auto& [name, j] : cases) {
     EXPECT_FALSE(gltf::ParseExtension(ToValue(j)).ok()) << name;
   }
+  nlohmann::json budgeted = good;
+  budgeted["triangleBudget"] = 12000;
+  auto ext = gltf::ParseExtension(ToValue(budgeted));
+  ASSERT_TRUE(ext.ok()) << ext.status().ToString();
+  EXPECT_EQ(ext->triangle_budget, 12000u);
+  auto again = gltf::ParseExtension(gltf::ExtensionToValue(*ext));
+  ASSERT_TRUE(again.ok());
+  EXPECT_EQ(again->triangle_budget, 12000u);
 }
 
 TEST(GltfExtension, AcceptsTheCoder1ShapeOfEmptyRanges) {
