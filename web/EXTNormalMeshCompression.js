@@ -26,8 +26,9 @@ const EMBEDDED_CODER = 1; // coder 1 (zerotree): one payload in range 1, ranges 
 
 export class GLTFNormalMeshCompressionExtension {
 
-	// options: progressive (false), maxLevel (-1: all), onLevel(mesh, level, info),
-	// onError(error, mesh) (default console.error).
+	// options: progressive (false), maxLevel (-1: all), maxTriangles (default: each
+	// primitive's recorded triangleBudget, its source's triangle count; 0: none),
+	// onLevel(mesh, level, info), onError(error, mesh) (default console.error).
 	constructor( parser, decoder, options = {} ) {
 
 		this.name = EXTENSION_NAME;
@@ -35,6 +36,7 @@ export class GLTFNormalMeshCompressionExtension {
 		this.decoder = decoder;
 		this.progressive = options.progressive === true;
 		this.maxLevel = Number.isInteger( options.maxLevel ) ? options.maxLevel : - 1;
+		this.maxTriangles = Number.isInteger( options.maxTriangles ) && options.maxTriangles >= 0 ? options.maxTriangles : - 1;
 		this.onLevel = options.onLevel || null;
 		this.onError = options.onError || ( ( error ) => console.error( error ) );
 		// BufferGeometry -> PrimitiveStream: GLTFLoader's clones share the geometry, so
@@ -257,9 +259,13 @@ class PrimitiveStream {
 		const bytes = await this.source.prefix( prefixEnd( this.ext.levelByteRanges, level ) );
 		this._checkHeader( bytes );
 		const start = performance.now();
-		const decoded = this.plugin.decoder.decode( bytes, level );
+		const budget = this.plugin.maxTriangles >= 0 ? this.plugin.maxTriangles : ( this.ext.triangleBudget || 0 );
+		const decoded = this.plugin.decoder.decode( bytes, level, budget );
 		const decodeMs = performance.now() - start;
-		if ( level === this.ext.levels ) checkFullCounts( this.plugin.parser.json, this.primitive, this.ext, decoded );
+		// The placeholders describe the whole level J, which a budget may cut.
+		const json = this.plugin.parser.json;
+		const whole = budget === 0 || budget >= json.accessors[ this.primitive.indices ].count / 3;
+		if ( level === this.ext.levels && whole ) checkFullCounts( json, this.primitive, this.ext, decoded );
 		fillGeometry( this.geometry, decoded );
 		this.shown = summary( this.ext, level, decoded, bytes.byteLength, decodeMs );
 
@@ -452,6 +458,11 @@ function checkExtension( json, primitive ) {
 	if ( ! ( json.extensionsUsed || [] ).includes( EXTENSION_NAME ) ) invalid( 'the extension is not in extensionsUsed (rule 1)' );
 	checkPrimitiveShape( primitive, ext );
 	checkLevels( ext );
+	if ( ext.triangleBudget !== undefined && ! ( Number.isInteger( ext.triangleBudget ) && ext.triangleBudget >= 1 ) ) {
+
+		invalid( 'triangleBudget is not a positive integer' );
+
+	}
 	checkAccessors( json, primitive, ext, required );
 	checkStreamView( json, ext );
 	return ext;

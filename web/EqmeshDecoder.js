@@ -145,10 +145,12 @@ export class EqmeshDecoder {
 
 	}
 
-	// Full stream (maxLevel -1) or the bytes up to the end of level maxLevel's chunk.
-	decode( bytes, maxLevel = - 1 ) {
+	// Full stream (maxLevel -1) or the bytes up to the end of level maxLevel's chunk;
+	// at most maxTriangles triangles (0: every one), refined where the surface needs
+	// them and closed without cracks.
+	decode( bytes, maxLevel = - 1, maxTriangles = 0 ) {
 
-		return this._withResult( bytes, ( ptr ) => this.wasm._eqm_decode( ptr, bytes.byteLength, maxLevel ),
+		return this._withResult( bytes, ( ptr ) => this.wasm._eqm_decode( ptr, bytes.byteLength, maxLevel, maxTriangles ),
 			( r ) => ( { ...this._layout( r ), ...this._geometry( r ) } ) );
 
 	}

@@ -67,11 +67,14 @@ void SetGeometry(const eqmesh::DecodedGeometry& g, EqmResult* r) {
 
 extern "C" {
 
-// Decodes up to `max_level` (-1: every level). As in the native glTF loader, a
-// caller asking for level K may pass only the bytes up to the end of chunk K.
-EMSCRIPTEN_KEEPALIVE EqmResult* eqm_decode(const uint8_t* data, uint32_t size, int32_t max_level) {
+// Decodes up to `max_level` (-1: every level) within `max_triangles` (0: none; a
+// double, as JS numbers are). As in the native glTF loader, a caller asking for
+// level K may pass only the bytes up to the end of chunk K.
+EMSCRIPTEN_KEEPALIVE EqmResult* eqm_decode(const uint8_t* data, uint32_t size, int32_t max_level,
+                                           double max_triangles) {
   eqmesh::DecodeOptions options;
   options.max_level = max_level;
+  options.max_triangles = max_triangles >= 1.0 && max_triangles < 1e15 ? static_cast<uint64_t>(max_triangles) : 0;
   options.allow_truncated = max_level >= 0;
   eqmesh::DecodeInfo info;
   eqmesh::StatusOr<eqmesh::DecodedGeometry> geometry = eqmesh::DecodeGeometry(data, size, options, &info);
