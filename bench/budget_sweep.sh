@@ -6,8 +6,8 @@
 # decoded mesh is manifold, its boundary edges and components against the input's,
 # its PSNR, and the encoder's warning when the budget could not carry the floor.
 #
-# usage: bench/budget_sweep.sh [MESH ...]   (default: ../shared/meshes/midsize/* and bench/ horse,
-#                                           stanford-bunny, armadillo_50k, skull_50k)
+# usage: bench/budget_sweep.sh [MESH ...]   (default: ../shared/meshes/midsize/*, small/* and bench/
+#                                           horse, stanford-bunny, armadillo_50k, skull_50k)
 # env:   EQMESH (default build/tools/eqmesh), BPV (1)
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
@@ -17,7 +17,7 @@ shared="$root/../shared/meshes"
 bpv="${BPV:-1}"
 meshes=("$@")
 if ((${#meshes[@]} == 0)); then
-  for m in "$shared"/midsize/*.{ply,off,obj}; do [[ -f "$m" ]] && meshes+=("$m"); done
+  for m in "$shared"/midsize/* "$shared"/small/*; do [[ -f "$m" ]] && meshes+=("$m"); done
   meshes+=("$shared/bench/horse.ply" "$shared/bench/stanford-bunny.obj" "$shared/bench/armadillo_50k.obj"
            "$shared/bench/skull_50k.obj")
 fi
@@ -41,7 +41,7 @@ for mesh in "${meshes[@]}"; do
   [[ "$compressed" == 0 ]] && note="left unchanged: $(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["primitives"][0].get("reason",""))' "$tmp/enc.json")"
   "$eqmesh" decode "$tmp/out.glb" "$tmp/dec.ply" >/dev/null
   "$eqmesh" info "$tmp/dec.ply" --json >"$tmp/dec.json"
-  psnr="$("$eqmesh" compare "$mesh" "$tmp/dec.ply" --json | python3 -c 'import json,sys; print(f"{json.load(sys.stdin)["psnr_db"]:.2f}")')"
+  psnr="$("$eqmesh" compare "$mesh" "$tmp/dec.ply" --json | python3 -c 'import json,sys; print("%.2f" % json.load(sys.stdin)["psnr_db"])')"
   in_faces="$(field "$tmp/in.json" faces)"
   out_faces="$(field "$tmp/dec.json" faces)"
   within=$([[ "$out_faces" -le "$in_faces" ]] && echo yes || echo NO)

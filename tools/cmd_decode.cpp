@@ -71,7 +71,9 @@ int RunDecode(int argc, char** argv) {
     return app.exit(e);
   }
   if (IsSameFile(in_path, out_path)) return Fail(kName, out_path + ": is the input file; write the output elsewhere");
-  if (EndsWith(in_path, ".glb") || EndsWith(in_path, ".gltf")) return DecodeGltf(in_path, out_path, level, max_triangles, json);
+  if (EndsWith(in_path, ".glb") || EndsWith(in_path, ".gltf")) {
+    return DecodeGltf(in_path, out_path, level, max_triangles, json);
+  }
   auto bytes = ReadFileBytes(in_path, kMaxStreamFileBytes);
   if (!bytes.ok()) return Fail(kName, bytes.status().message());
   const auto start = std::chrono::steady_clock::now();

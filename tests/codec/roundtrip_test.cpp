@@ -130,7 +130,8 @@ TEST(RoundTrip, KeptPartsUseTheCompactChunkWhereTheyCan) {
     ASSERT_TRUE(info.ok());
     EXPECT_TRUE(info->has_kept_exactly);
     EXPECT_EQ(info->has_compact_kept, manifold);
-    EXPECT_EQ(info->version_minor, manifold ? bitstream::kVersionMinorCompactKept : bitstream::kVersionMinorWithoutAtlas);
+    EXPECT_EQ(info->version_minor,
+              manifold ? bitstream::kVersionMinorCompactKept : bitstream::kVersionMinorWithoutAtlas);
     auto decoded = DecodeSemiRegular(bytes->data(), bytes->size());
     ASSERT_TRUE(decoded.ok()) << decoded.status().ToString();
     ASSERT_EQ(decoded->kept_exactly.positions.size(), mesh.kept_exactly.positions.size());

@@ -457,7 +457,9 @@ TEST(EqModel, SigmaEstimateFollowsTheIntegerRuleForSmallAndHugeValues) {
   std::mt19937 rng(5);
   for (const int max_bits : {3, 12, 24, 28}) {
     std::vector<int64_t> recon(layout->size());
-    for (int64_t& r : recon) r = static_cast<int64_t>(rng() % (uint32_t{1} << max_bits)) - (int64_t{1} << (max_bits - 1));
+    for (int64_t& r : recon) {
+      r = static_cast<int64_t>(rng() % (uint32_t{1} << max_bits)) - (int64_t{1} << (max_bits - 1));
+    }
     for (size_t p = 0; p < recon.size(); ++p) {
       EqUint128 sum = 0;
       uint64_t weight = 0;
