@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Default triangle budget on every mesh (issue #33): `eqmesh encode MESH out.glb
-# --bpv B` (the .glb records the source's triangle count), `eqmesh decode out.glb`
+# --psnr D` (the .glb records the source's triangle count), `eqmesh decode out.glb`
 # with the loader's default budget, then `eqmesh info` on the input and on the
 # decoded mesh. One Markdown row per mesh: input and decoded triangles, whether the
 # decoded mesh is manifold, its boundary edges and components against the input's,
@@ -8,13 +8,13 @@
 #
 # usage: bench/budget_sweep.sh [MESH ...]   (default: ../shared/meshes/midsize/*, small/* and bench/
 #                                           horse, stanford-bunny, armadillo_50k, skull_50k)
-# env:   EQMESH (default build/tools/eqmesh), BPV (1)
+# env:   EQMESH (default build/tools/eqmesh), PSNR (70)
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 root="$(dirname "$here")"
 eqmesh="${EQMESH:-$root/build/tools/eqmesh}"
 shared="$root/../shared/meshes"
-bpv="${BPV:-1}"
+psnr_target="${PSNR:-70}"
 meshes=("$@")
 if ((${#meshes[@]} == 0)); then
   for m in "$shared"/midsize/* "$shared"/small/*; do [[ -f "$m" ]] && meshes+=("$m"); done
@@ -32,7 +32,7 @@ for mesh in "${meshes[@]}"; do
   name="$(basename "$mesh")"
   echo "budget_sweep.sh: $name" >&2
   "$eqmesh" info "$mesh" --json >"$tmp/in.json"
-  if ! "$eqmesh" encode "$mesh" "$tmp/out.glb" --bpv "$bpv" --json >"$tmp/enc.json" 2>"$tmp/enc.err"; then
+  if ! "$eqmesh" encode "$mesh" "$tmp/out.glb" --psnr "$psnr_target" --json >"$tmp/enc.json" 2>"$tmp/enc.err"; then
     echo "| $name | $(field "$tmp/in.json" faces) | encode failed: $(tail -1 "$tmp/enc.err") | | | | | | |"
     continue
   fi
