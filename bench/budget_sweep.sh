@@ -3,7 +3,7 @@
 # --psnr D` (the .glb records the source's triangle count), `eqmesh decode out.glb`
 # with the loader's default budget, then `eqmesh info` on the input and on the
 # decoded mesh. One Markdown row per mesh: input and decoded triangles, whether the
-# decoded mesh is manifold, its boundary edges and components against the input's,
+# decoded mesh is manifold, its boundary loops and components against the input's,
 # its PSNR, and the encoder's warning when the budget could not carry the floor.
 #
 # usage: bench/budget_sweep.sh [MESH ...]   (default: ../shared/meshes/midsize/*, small/* and bench/
@@ -26,7 +26,7 @@ trap 'rm -rf "$tmp"' EXIT
 
 field() { python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); print(d.get(sys.argv[2], ""))' "$1" "$2"; }
 
-echo "| mesh | input triangles | decoded triangles | within | manifold | boundary edges (input) | components (input) | PSNR dB | note |"
+echo "| mesh | input triangles | decoded triangles | within | manifold | boundary loops (input) | components (input) | PSNR dB | note |"
 echo "|---|---|---|---|---|---|---|---|---|"
 for mesh in "${meshes[@]}"; do
   name="$(basename "$mesh")"
@@ -46,6 +46,6 @@ for mesh in "${meshes[@]}"; do
   out_faces="$(field "$tmp/dec.json" faces)"
   within=$([[ "$out_faces" -le "$in_faces" ]] && echo yes || echo NO)
   echo "| $name | $in_faces | $out_faces | $within | $(field "$tmp/dec.json" manifold) |" \
-       "$(field "$tmp/dec.json" boundary_edges) ($(field "$tmp/in.json" boundary_edges)) |" \
+       "$(field "$tmp/dec.json" boundary_loops) ($(field "$tmp/in.json" boundary_loops)) |" \
        "$(field "$tmp/dec.json" components) ($(field "$tmp/in.json" components)) | $psnr | $note |"
 done
