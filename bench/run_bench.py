@@ -438,11 +438,32 @@ class Bench:
                     self.add(**row)
                     log("%s:   %d B, %.3f bpv, %.2f dB, enc %.2fs dec %.3fs" % (
                         m["name"], nbytes, row["bpv"], psnr or float("nan"), row["encode_s"] or 0, d or 0))
+                    if coder == "eq":
+                        self.budget(m, base, canon, stream, vname, bpv, nbytes)
                     if coder == "eq" and bpv == max(rates) and not self.args.quick:
                         self.levels(m, base, canon, stream, vname, bpv, j)
                 except (StepError, KeyError, ValueError) as e:
                     row["error"] = str(e)
                     self.add(**row)
+
+    def budget(self, m, base, canon, stream, vname, bpv, nbytes):
+        """The same stream decoded within the input's own triangle count (decode --max-triangles)."""
+        dec = stream[:-4] + "_budget.ply"
+        row = dict(base, codec="eqmesh-budget", variant=vname, param=bpv)
+        try:
+            out, _, wall, _ = run_timed([self.eq, "decode", stream, dec, "--max-triangles",
+                                         m["triangles"], "--json"])
+            dj = json_of(out)
+            psnr, rms, haus, ftri = self.compare(canon, dec, m["samples"])
+            row.update(bytes_payload=nbytes, bpv=8.0 * nbytes / m["vertices"], psnr_db=psnr, rms=rms,
+                       hausdorff=haus, decode_s=dj.get("decode_seconds", wall),
+                       output_vertices=dj.get("vertices"), output_triangles=dj.get("faces", ftri), runs=1)
+            self.add(**row)
+            log("%s:   within %d triangles: %s triangles, %.2f dB" % (
+                m["name"], m["triangles"], dj.get("faces"), psnr or float("nan")))
+        except (StepError, KeyError, ValueError) as e:
+            row["error"] = str(e)
+            self.add(**row)
 
     def levels(self, m, base, canon, stream, vname, bpv, enc_json):
         """Progressive access: decode every level of one stream and measure it."""
@@ -580,6 +601,10 @@ def curves(rows, mesh, nv):
         pts = [(r["bpv"], r["psnr_db"]) for r in ok_rows(rows, mesh, "eqmesh", v)]
         if pts:
             c[v] = sorted(pts)
+    for v in ("eq-lifted", "eq-unlifted"):
+        pts = [(r["bpv"], r["psnr_db"]) for r in ok_rows(rows, mesh, "eqmesh-budget", v)]
+        if pts:
+            c[v + "-budget"] = sorted(pts)
     eq_all = c.get("eq-lifted", []) + c.get("eq-unlifted", [])
     if eq_all:
         c["eq-best"] = bdrate.pareto_front(eq_all)
@@ -608,6 +633,8 @@ def curves(rows, mesh, nv):
 
 
 PLOT_STYLE = [("eq-lifted", "EQ lifted"), ("eq-unlifted", "EQ unlifted"),
+              ("eq-lifted-budget", "EQ lifted, within the input's triangle count"),
+              ("eq-unlifted-budget", "EQ unlifted, within the input's triangle count"),
               ("zerotree-lifted", "ZT lifted"), ("zerotree-unlifted", "ZT unlifted"),
               ("draco-cl7", "Draco cl7"), ("draco-cl10", "Draco cl10"),
               ("gltfpack", "gltfpack -cc"), ("gltfpack-gzip", "gltfpack -cc + gzip -9")]
