@@ -633,8 +633,8 @@ def curves(rows, mesh, nv):
 
 
 PLOT_STYLE = [("eq-lifted", "EQ lifted"), ("eq-unlifted", "EQ unlifted"),
-              ("eq-lifted-budget", "EQ lifted, within the input's triangle count"),
-              ("eq-unlifted-budget", "EQ unlifted, within the input's triangle count"),
+              ("eq-lifted-budget", "EQ lifted, within the input triangle count"),
+              ("eq-unlifted-budget", "EQ unlifted, within the input triangle count"),
               ("zerotree-lifted", "ZT lifted"), ("zerotree-unlifted", "ZT unlifted"),
               ("draco-cl7", "Draco cl7"), ("draco-cl10", "Draco cl10"),
               ("gltfpack", "gltfpack -cc"), ("gltfpack-gzip", "gltfpack -cc + gzip -9")]
@@ -656,7 +656,8 @@ def plot_mesh(rows, mesh, meta, png, workdir):
             for x, y in sorted(c[key]):
                 f.write("%g %g\n" % (x, y))
         dash = " dt 3" if key.startswith("zerotree") else ""
-        plots.append("'%s' using 1:2 with linespoints lw 2%s title '%s'" % (dat, dash, title))
+        # gnuplot's single-quoted strings escape a quote by doubling it.
+        plots.append("'%s' using 1:2 with linespoints lw 2%s title '%s'" % (dat, dash, title.replace("'", "''")))
     if not plots:
         return False
     ceiling = meta.get("remesh_psnr")
