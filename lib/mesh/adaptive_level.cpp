@@ -225,12 +225,6 @@ class AdaptiveCut {
   bool exhausted_ = false;
 };
 
-void AppendKept(const Mesh& kept, Mesh* out) {
-  const uint32_t offset = static_cast<uint32_t>(out->positions.size());
-  out->positions.insert(out->positions.end(), kept.positions.begin(), kept.positions.end());
-  for (const Face& f : kept.faces) out->faces.push_back({f[0] + offset, f[1] + offset, f[2] + offset});
-}
-
 }  // namespace
 
 Mesh ExtractAdaptiveLevel(const SemiRegularMesh& mesh, uint64_t max_triangles, AdaptiveLevelReport* report) {
@@ -287,7 +281,7 @@ Mesh ExtractAdaptiveLevel(const SemiRegularMesh& mesh, uint64_t max_triangles, A
     return ExtractLevel(mesh, 0);
   }
   Mesh out = best->Emit(r);
-  AppendKept(mesh.kept_exactly, &out);
+  AppendKeptComponents(mesh.kept_exactly, &out);
   return out;
 }
 

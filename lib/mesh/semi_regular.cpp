@@ -131,22 +131,18 @@ int SemiRegularHierarchy::VertexLevel(uint32_t v) const {
   return level;
 }
 
-namespace {
-
-void AppendKept(const Mesh& kept, Mesh* out) {
+void AppendKeptComponents(const Mesh& kept, Mesh* out) {
   const uint32_t offset = static_cast<uint32_t>(out->positions.size());
   out->positions.insert(out->positions.end(), kept.positions.begin(), kept.positions.end());
   for (const Face& f : kept.faces) out->faces.push_back({f[0] + offset, f[1] + offset, f[2] + offset});
 }
-
-}  // namespace
 
 Mesh ExtractLevel(const SemiRegularMesh& mesh, int level) {
   Mesh out;
   const uint32_t n = mesh.hierarchy.NumVertices(level);
   out.positions.assign(mesh.positions.begin(), mesh.positions.begin() + n);
   out.faces = mesh.hierarchy.Faces(level);
-  AppendKept(mesh.kept_exactly, &out);
+  AppendKeptComponents(mesh.kept_exactly, &out);
   return out;
 }
 
@@ -155,7 +151,7 @@ Mesh ExtractLevel(SemiRegularMesh&& mesh, int level) {
   out.positions = std::move(mesh.positions);
   out.positions.resize(mesh.hierarchy.NumVertices(level));
   out.faces = mesh.hierarchy.TakeFaces(level);
-  AppendKept(mesh.kept_exactly, &out);
+  AppendKeptComponents(mesh.kept_exactly, &out);
   return out;
 }
 

@@ -87,6 +87,9 @@ struct SemiRegularMesh {
 
 // Level `level` of a semi-regular mesh as a plain mesh (kept_exactly appended).
 Mesh ExtractLevel(const SemiRegularMesh& mesh, int level);
+// Appends `kept` (a SemiRegularMesh's kept_exactly) to `out`, its indices offset by
+// out's vertex count: how every extraction of a level ends.
+void AppendKeptComponents(const Mesh& kept, Mesh* out);
 // The same for a mesh the caller is done with: the finest level's positions and
 // faces are moved rather than copied (a decoder's last step).
 Mesh ExtractLevel(SemiRegularMesh&& mesh, int level);
