@@ -22,6 +22,7 @@ set(EQMESH_STREAM_DECODER_SOURCES
   coding/atlas/seam_split.cpp
   coding/compact_base/compact_base_model.cpp
   coding/compact_base/compact_base_decoder.cpp
+  coding/compact_base/compact_positions.cpp
   coding/stream_header.cpp
   coding/level_decoder.cpp
   coding/level_synthesis.cpp

@@ -14,6 +14,7 @@
 
 #include "coding/encoder.h"
 #include "coding/level_count_search.h"
+#include "coding/representation_choice.h"
 #include "gltf/gltf_converter.h"
 #include "mesh_io/mesh_io.h"
 #include "mesh_io/semi_regular_io.h"
@@ -92,13 +93,19 @@ EncodeOptions ToEncodeOptions(const EncodeArgs& a) {
 }
 
 nlohmann::json ToJson(const EncodeArgs& a, const RemeshReport& remesh, const EncodeReport& r,
-                      const LevelCountReport& search, double remesh_seconds, double encode_seconds) {
+                      const LevelCountReport& search, const RepresentationReport& choice, double remesh_seconds,
+                      double encode_seconds) {
   nlohmann::json j;
   j["input"] = a.in_path;
   j["output"] = a.out_path;
   j["input_vertices"] = remesh.input_vertices;
-  j["base_vertices"] = remesh.base_vertices;
-  j["semi_regular_vertices"] = remesh.output_vertices;
+  j["representation"] = choice.as_is ? "as_is" : "normal_mesh";
+  if (choice.tried_as_is) {
+    j["representations"] = {{"normal_mesh", {{"bytes", choice.remeshed_bytes}, {"psnr_db", choice.remeshed_psnr_db}}},
+                            {"as_is", {{"bytes", choice.as_is_bytes}, {"psnr_db", choice.as_is_psnr_db}}}};
+  }
+  j["base_vertices"] = choice.as_is ? remesh.input_vertices : remesh.base_vertices;
+  j["semi_regular_vertices"] = choice.as_is ? remesh.input_vertices : remesh.output_vertices;
   j["remesh_levels"] = remesh.levels;
   j["levels"] = r.level_bytes.size();
   j["level_search"] = nlohmann::json::array();
@@ -135,6 +142,7 @@ nlohmann::json ToJson(const gltf::PrimitiveOutcome& p) {
   j["output_vertices"] = p.output_vertices;
   j["stream_bytes"] = p.stream_bytes;
   j["levels"] = p.levels;
+  if (p.compressed) j["representation"] = p.as_is ? "as_is" : "normal_mesh";
   if (p.psnr_db > 0) j["psnr_db"] = p.psnr_db;
   if (!p.note.empty()) j["note"] = p.note;
   return j;
@@ -151,10 +159,10 @@ void PrintGlbSummary(const std::string& out_path, const gltf::ConvertReport& rep
               report.compressed, report.unchanged);
   for (const auto& p : report.primitives) {
     if (!p.compressed) continue;
-    std::printf("  mesh %d primitive %d: %zu vertices -> %llu-byte stream, %.3f bits per input vertex, %d levels",
+    std::printf("  mesh %d primitive %d: %zu vertices -> %llu-byte stream, %.3f bits per input vertex, %s",
                 p.mesh, p.primitive, p.input_vertices, static_cast<unsigned long long>(p.stream_bytes),
                 p.input_vertices ? 8.0 * static_cast<double>(p.stream_bytes) / static_cast<double>(p.input_vertices) : 0.0,
-                p.levels);
+                p.as_is ? "coded as is" : (std::to_string(p.levels) + " levels").c_str());
     if (p.psnr_db > 0) std::printf(", PSNR %.2f dB", p.psnr_db);
     std::printf("\n");
     if (!p.note.empty()) std::fprintf(stderr, "eqmesh encode: warning: mesh %d primitive %d %s\n", p.mesh, p.primitive,
@@ -349,7 +357,11 @@ int RunEncode(int argc, char** argv) {
   LevelCountReport search;
   options.progress = TerminalProgress(a.json);
   const auto encode_start = std::chrono::steady_clock::now();
-  auto bytes = EncodeChoosingLevels(source->remeshed, options, &report, &search);
+  RepresentationReport choice;
+  // An explicit --levels or --base-vertices asks for a normal mesh of that shape.
+  const bool allow_as_is = !srm_input && a.levels < 0 && a.base_vertices < 0;
+  auto bytes = EncodeChoosingRepresentation(source->remeshed, options, allow_as_is, a.repair, &report, &search,
+                                            &choice);
   ClearTerminalProgress(options.progress);
   if (!bytes.ok()) return Fail(kName, a.in_path + ": " + bytes.status().message());
   const double encode_seconds = SecondsSince(encode_start);
@@ -368,11 +380,13 @@ int RunEncode(int argc, char** argv) {
     WarnOnLowCeiling(source->remeshed, *source->original);
   }
   if (a.json) {
-    std::printf("%s\n", ToJson(a, remesh_report, report, search, remesh_seconds, encode_seconds).dump(2).c_str());
+    std::printf("%s\n",
+                ToJson(a, remesh_report, report, search, choice, remesh_seconds, encode_seconds).dump(2).c_str());
   } else {
-    std::printf("%s: %zu bytes, %.3f bits per input vertex (%zu vertices), %d levels",
-                a.out_path.c_str(), report.total_bytes, report.bpv, options.input_vertices,
-                static_cast<int>(report.level_bytes.size()));
+    std::printf("%s: %zu bytes, %.3f bits per input vertex (%zu vertices), %s", a.out_path.c_str(),
+                report.total_bytes, report.bpv, options.input_vertices,
+                choice.as_is ? "the input coded as is (smaller than its normal mesh)"
+                             : (std::to_string(report.level_bytes.size()) + " levels").c_str());
     if (report.psnr_measured) std::printf(", PSNR %.2f dB", report.psnr_db);
     std::printf("\n");
   }

@@ -1,6 +1,7 @@
 #include "coding/base_influence.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "wavelet/butterfly.h"
 
@@ -112,6 +113,25 @@ std::vector<double> BaseInfluenceWeights(const SemiRegularHierarchy& hierarchy) 
   std::vector<double> weights(base, 1.0);
   for (uint32_t i = 0; i < base; ++i) weights[i] = refiner.Energy(i);
   return weights;
+}
+
+std::vector<Eigen::Matrix3d> SurfaceErrorQuadrics(const Mesh& base) {
+  std::vector<Eigen::Matrix3d> q(base.positions.size(), Eigen::Matrix3d::Zero());
+  std::vector<int> count(base.positions.size(), 0);
+  for (const Face& f : base.faces) {
+    const Vec3 n = (base.positions[f[1]] - base.positions[f[0]]).cross(base.positions[f[2]] - base.positions[f[0]]);
+    const double len = n.norm();
+    if (!(len > 0) || !std::isfinite(len)) continue;
+    const Eigen::Matrix3d nn = (n / len) * (n / len).transpose();
+    for (int k = 0; k < 3; ++k) {
+      q[f[k]] += nn;
+      ++count[f[k]];
+    }
+  }
+  for (size_t v = 0; v < q.size(); ++v) {
+    q[v] = count[v] > 0 ? Eigen::Matrix3d(q[v] / count[v]) : Eigen::Matrix3d::Identity();
+  }
+  return q;
 }
 
 }  // namespace eqmesh

@@ -12,10 +12,21 @@
 
 #include <vector>
 
+#include <Eigen/Core>
+
+#include "mesh/mesh.h"
 #include "mesh/semi_regular.h"
 
 namespace eqmesh {
 
 std::vector<double> BaseInfluenceWeights(const SemiRegularHierarchy& hierarchy);
+
+// For a base that IS the decoded surface (no refinement levels): per vertex, the
+// mean over its faces of n n^T (unit face normals), so that e^T Q e is the mean
+// squared distance a displacement e puts the vertex from the planes of its faces.
+// A slide within a flat region costs nothing; across a crease it does (Garland and
+// Heckbert's error quadric, SIGGRAPH 1997, averaged instead of summed). Vertices
+// with no non-degenerate face get the identity (|e|^2).
+std::vector<Eigen::Matrix3d> SurfaceErrorQuadrics(const Mesh& base);
 
 }  // namespace eqmesh

@@ -255,7 +255,7 @@ StatusOr<MeshChunkEncoding> EncodeWithMethod(const Mesh& mesh, int bits, int met
   const uint32_t n = static_cast<uint32_t>(mesh.positions.size());
   const DracoMeshLimits limits{n, mesh.faces.size()};
   MeshChunkEncoding out;
-  out.bits = bits;
+  out.depth = bits;
   EQMESH_ASSIGN_OR_RETURN(out.bytes, RunDraco(*ToDracoMesh(mesh), bits, method));
   EQMESH_ASSIGN_OR_RETURN(out.decoded, DecodeDracoMesh(out.bytes.data(), out.bytes.size(), limits,
                                                        "base mesh self-check"));
@@ -268,24 +268,43 @@ StatusOr<MeshChunkEncoding> EncodeWithMethod(const Mesh& mesh, int bits, int met
   return out;
 }
 
-double WeightedError(const Mesh& input, const MeshChunkEncoding& enc,
-                     const std::vector<double>& weights) {
+double WeightedError(const Mesh& input, const MeshChunkEncoding& enc, const std::vector<double>& weights,
+                     const std::vector<Eigen::Matrix3d>* quadrics) {
   double d = 0.0;
   for (size_t i = 0; i < enc.decoded_to_input.size(); ++i) {
     const uint32_t v = enc.decoded_to_input[i];
-    d += weights[v] * (enc.decoded.positions[i] - input.positions[v]).squaredNorm();
+    const Vec3 e = enc.decoded.positions[i] - input.positions[v];
+    d += weights[v] * (quadrics ? e.dot((*quadrics)[v] * e) : e.squaredNorm());
   }
   return d;
 }
 
-StatusOr<MeshChunkEncoding> EncodeCompactCandidate(const Mesh& base, int bits) {
-  EQMESH_ASSIGN_OR_RETURN(CompactBaseEncoding c, EncodeCompactBase(base, bits));
+MeshChunkEncoding FromCompact(CompactBaseEncoding c, const CompactVariant& v) {
   MeshChunkEncoding out;
   out.bytes = std::move(c.bytes);
   out.decoded = std::move(c.decoded);
   out.decoded_to_input = std::move(c.decoded_to_input);
-  out.bits = bits;
+  out.depth = v.depth;
   out.compact = true;
+  out.tangential_quarters = v.tangential_quarters;
+  return out;
+}
+
+// Every compact depth (and, for a surface, tangential step) in one traversal.
+StatusOr<std::vector<MeshChunkEncoding>> EncodeCompactCandidates(const Mesh& base, bool surface_frames) {
+  std::vector<CompactVariant> variants;
+  for (int bits = bitstream::kBaseMinBits; bits <= bitstream::kBaseMaxBits; ++bits) {
+    for (int step = 0; step < kCompactDepthSteps; ++step) {
+      if (bits == bitstream::kBaseMaxBits && step > 0) break;
+      const double depth = bits + static_cast<double>(step) / kCompactDepthSteps;
+      for (const int quarters : kSurfaceTangentialQuarters) {
+        if (quarters == kGridTangentialQuarters || surface_frames) variants.push_back({depth, quarters});
+      }
+    }
+  }
+  EQMESH_ASSIGN_OR_RETURN(std::vector<CompactBaseEncoding> chunks, EncodeCompactBaseVariants(base, variants));
+  std::vector<MeshChunkEncoding> out;
+  for (size_t i = 0; i < chunks.size(); ++i) out.push_back(FromCompact(std::move(chunks[i]), variants[i]));
   return out;
 }
 
@@ -313,16 +332,20 @@ StatusOr<MeshChunkEncoding> EncodeMeshWithDraco(const Mesh& mesh, int bits, bool
   }
 }
 
-StatusOr<std::vector<MeshChunkEncoding>> EncodeBaseCandidates(const Mesh& base, bool draco_only) {
-  // A coarse depth can merge base vertices that lie closer than its step (scans
-  // with near-duplicate points): such a depth cannot be matched back to the
-  // input and is skipped; the finer ones always can.
+StatusOr<std::vector<MeshChunkEncoding>> EncodeBaseCandidates(const Mesh& base, bool draco_only,
+                                                              bool surface_frames) {
+  // The compact chunk wherever the base is a manifold, consistently oriented mesh;
+  // else Draco at every whole depth. A coarse Draco depth can merge base vertices
+  // that lie closer than its step (scans with near-duplicate points): such a depth
+  // cannot be matched back to the input and is skipped; the finer ones always can.
+  if (!draco_only) {
+    auto compact = EncodeCompactCandidates(base, surface_frames);
+    if (compact.ok()) return compact;
+  }
   std::vector<MeshChunkEncoding> candidates;
   Status last = Status::Ok();
   for (int bits = bitstream::kBaseMinBits; bits <= bitstream::kBaseMaxBits; ++bits) {
-    StatusOr<MeshChunkEncoding> enc =
-        draco_only ? EncodeMeshWithDraco(base, bits) : EncodeCompactCandidate(base, bits);
-    if (!enc.ok() && !draco_only) enc = EncodeMeshWithDraco(base, bits);
+    StatusOr<MeshChunkEncoding> enc = EncodeMeshWithDraco(base, bits);
     if (enc.ok()) {
       candidates.push_back(std::move(*enc));
     } else {
@@ -335,17 +358,17 @@ StatusOr<std::vector<MeshChunkEncoding>> EncodeBaseCandidates(const Mesh& base, 
 
 size_t ChooseBaseCandidate(const std::vector<MeshChunkEncoding>& candidates, const Mesh& base,
                            const std::vector<double>& weights, double lambda_world,
-                           BaseRdReport* report) {
+                           BaseRdReport* report, const std::vector<Eigen::Matrix3d>* quadrics) {
   size_t best = 0;
   double best_cost = std::numeric_limits<double>::infinity();
   for (size_t i = 0; i < candidates.size(); ++i) {
     const double rate = 8.0 * static_cast<double>(candidates[i].bytes.size());
-    const double distortion = WeightedError(base, candidates[i], weights);
+    const double distortion = WeightedError(base, candidates[i], weights, quadrics);
     const double cost = rate + lambda_world * kBaseUncorrectedShare * distortion;
     if (cost < best_cost) {
       best_cost = cost;
       best = i;
-      if (report) *report = {candidates[i].bits, rate, distortion};
+      if (report) *report = {candidates[i].depth, rate, distortion};
     }
   }
   return best;

@@ -7,7 +7,9 @@
 // R-D choice of the scaling-value depth (seed paper sec. 4 quantizes scaling
 // coefficients "using variable bit rate" but does not say how; its future work asks
 // for the R-D trade-off between scaling and wavelet coefficients). We try every
-// position depth b in [kBaseMinBits, kBaseMaxBits] and keep the b minimising
+// position depth b in [kBaseMinBits, kBaseMaxBits] (quarter bits for the compact
+// chunk, whose step is free; a whole bit is 6 dB, too coarse a staircase when the
+// base is the whole stream) and keep the b minimising
 //     J(b) = R(b) + lambda_world * sum_i w_i * |x_i - x^_i(b)|^2
 // with R in bits (the whole chunk), x^ the decoded value and w_i the
 // influence of base vertex i: the squared-norm energy, at the finest level, of the
@@ -30,18 +32,27 @@
 #include <cstdint>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "core/status.h"
 #include "mesh/mesh.h"
 
 namespace eqmesh {
+
+// Compact-chunk depths are tried in steps of 1/kCompactDepthSteps bit.
+inline constexpr int kCompactDepthSteps = 4;
+// Tangential steps (quarter grid steps) tried for a base that is the whole surface.
+inline constexpr int kSurfaceTangentialQuarters[] = {4, 6, 8, 12, 16};
 
 struct MeshChunkEncoding {
   std::vector<uint8_t> bytes;                // the chunk that goes in the stream
   Mesh decoded;                              // exactly what the chunk's decoder returns for it
   std::vector<uint32_t> decoded_to_input;    // decoded vertex i was input vertex [i]
                                              // (empty when no map was asked for)
-  int bits = 0;                              // position quantization depth
+  double depth = 0;                          // position quantization depth in bits (compact: any
+                                             // quarter bit; Draco: whole bits)
   bool compact = false;                      // a compact chunk (stream flag kCompactBase), else Draco
+  int tangential_quarters = 4;               // compact: tangential step in quarter grid steps
 };
 
 // One Draco encoding at a fixed depth, with the decoded result and (need_map) the
@@ -50,20 +61,27 @@ struct MeshChunkEncoding {
 StatusOr<MeshChunkEncoding> EncodeMeshWithDraco(const Mesh& mesh, int bits, bool need_map = true);
 
 struct BaseRdReport {
-  int bits = 0;
+  double depth = 0;
   double rate_bits = 0;
   double weighted_distortion = 0;
 };
 
 // Every depth of [kBaseMinBits, kBaseMaxBits], in order (independent of lambda, so
-// rate control computes them once): the compact chunk (compact_base/) where the
-// base is a manifold, consistently oriented mesh, else Draco.
-StatusOr<std::vector<MeshChunkEncoding>> EncodeBaseCandidates(const Mesh& base, bool draco_only = false);
+// rate control computes them once): the compact chunk (compact_base/), in steps of
+// 1/kCompactDepthSteps bit, where the base is a manifold, consistently oriented mesh,
+// else Draco in whole bits.
+// surface_frames (a base with no refinement levels, i.e. the decoded surface itself)
+// adds the compact chunk's surface-frame codings (kSurfaceTangentialQuarters) at
+// every depth.
+StatusOr<std::vector<MeshChunkEncoding>> EncodeBaseCandidates(const Mesh& base, bool draco_only = false,
+                                                              bool surface_frames = false);
 
-// Index of the candidate minimising J (weights.size() == base.num_vertices()).
+// Index of the candidate minimising J (weights.size() == base.num_vertices()). With
+// quadrics (SurfaceErrorQuadrics, one per base vertex) a vertex's error is e^T Q e
+// instead of |e|^2.
 size_t ChooseBaseCandidate(const std::vector<MeshChunkEncoding>& candidates, const Mesh& base,
                            const std::vector<double>& weights, double lambda_world,
-                           BaseRdReport* report);
+                           BaseRdReport* report, const std::vector<Eigen::Matrix3d>* quadrics = nullptr);
 
 // Both steps at once.
 StatusOr<MeshChunkEncoding> EncodeBaseMesh(const Mesh& base, const std::vector<double>& weights,

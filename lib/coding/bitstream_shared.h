@@ -47,15 +47,18 @@ namespace eqmesh::bitstream {
 
 constexpr uint8_t kMagic[4] = {'E', 'Q', 'M', 'S'};
 constexpr uint8_t kVersionMajor = 1;
-constexpr uint8_t kVersionMinor = 5;  // 1.1: coder 1 (zerotree); 1.2: kCompactBase;
+constexpr uint8_t kVersionMinor = 6;  // 1.1: coder 1 (zerotree); 1.2: kCompactBase;
                                       // 1.3: kTangentialContext; 1.4: kHasAtlas;
-                                      // 1.5: kCompactKept
+                                      // 1.5: kCompactKept; 1.6: kCompactPositionsAfter
 // A stream carries the lowest minor version that has every feature it uses, so an
 // optional feature leaves the streams without it byte-identical: 1.3 without an
-// atlas or a compact kept chunk, 1.4 with an atlas, 1.5 with a compact kept chunk.
+// atlas or a compact kept chunk, 1.4 with an atlas, 1.5 with a compact kept chunk,
+// 1.6 with compact chunks in the positions-after layout (every compact chunk an
+// encoder of this version writes; 1.3 only for streams whose chunks are all Draco).
 constexpr uint8_t kVersionMinorWithoutAtlas = 3;
 constexpr uint8_t kVersionMinorAtlas = 4;
 constexpr uint8_t kVersionMinorCompactKept = 5;
+constexpr uint8_t kVersionMinorPositionsAfter = 6;
 
 // Wavelet transform the level chunks are expressed in. Pinned values.
 enum class TransformId : uint8_t {
@@ -78,8 +81,10 @@ enum HeaderFlag : uint8_t {
   kTangentialContext = 1u << 2,  // EQ chunks context-model tangential parts (1.3; coder kEq only)
   kHasAtlas = 1u << 3,           // an atlas chunk follows the kept (or base) chunk (1.4)
   kCompactKept = 1u << 4,        // the kept chunk is a compact chunk, not Draco (1.5)
+  kCompactPositionsAfter = 1u << 5,  // compact chunks code positions after connectivity (1.6)
 };
-constexpr uint8_t kKnownFlags = kHasKeptExactly | kCompactBase | kTangentialContext | kHasAtlas | kCompactKept;
+constexpr uint8_t kKnownFlags =
+    kHasKeptExactly | kCompactBase | kTangentialContext | kHasAtlas | kCompactKept | kCompactPositionsAfter;
 
 // lambda and the tangential factor travel as log2 codes in 1/kLogCodeScale steps;
 // the encoder codes with the value the decoder will rebuild from the code.

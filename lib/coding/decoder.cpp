@@ -29,6 +29,7 @@ StreamInfo MakeStreamInfo(const StreamHeader& h, size_t header_size) {
   s.has_kept_exactly = h.has_kept();
   s.has_compact_base = h.has_compact_base();
   s.has_compact_kept = h.has_compact_kept();
+  s.has_positions_after = h.has_positions_after();
   s.has_tangential_context = h.has_tangential_context();
   s.header_size = header_size;
   s.base_offset = header_size;
@@ -74,10 +75,14 @@ Status CheckLength(const StreamInfo& s, size_t size, const DecodeOptions& option
   return Status::Ok();
 }
 
+CompactLayout CompactLayoutOf(const StreamInfo& s) {
+  return s.has_positions_after ? CompactLayout::kPositionsAfter : CompactLayout::kInterleaved;
+}
+
 StatusOr<Mesh> DecodeBase(const uint8_t* data, const StreamInfo& s) {
   if (s.has_compact_base) {
     return DecodeCompactBase(data + s.base_offset, static_cast<size_t>(s.base_size), bitstream::kMaxBaseVertices,
-                             "eqm base mesh chunk");
+                             "eqm base mesh chunk", CompactLayoutOf(s));
   }
   const DracoMeshLimits limits{bitstream::kMaxBaseVertices, bitstream::kMaxFinestFaces};
   return DecodeDracoMesh(data + s.base_offset, static_cast<size_t>(s.base_size), limits, "eqm base mesh chunk");
@@ -87,7 +92,8 @@ StatusOr<Mesh> DecodeKept(const uint8_t* data, const StreamInfo& s) {
   if (!s.has_kept_exactly) return Mesh();
   if (s.has_compact_kept) {
     return DecodeCompactBase(data + s.kept_offset, static_cast<size_t>(s.kept_size),
-                             static_cast<uint32_t>(bitstream::kMaxFinestFaces), "eqm kept-exactly chunk");
+                             static_cast<uint32_t>(bitstream::kMaxFinestFaces), "eqm kept-exactly chunk",
+                             CompactLayoutOf(s));
   }
   const DracoMeshLimits limits{static_cast<uint32_t>(bitstream::kMaxFinestFaces),
                                bitstream::kMaxFinestFaces};

@@ -59,6 +59,7 @@ struct StreamInfo {
   bool has_kept_exactly = false;
   bool has_compact_base = false;  // base chunk is a compact chunk (1.2), not Draco
   bool has_compact_kept = false;  // kept chunk is a compact chunk (1.5), not Draco
+  bool has_positions_after = false;  // compact chunks in the positions-after layout (1.6)
   bool has_tangential_context = false;  // EQ tangential parts context-modelled (1.3)
   bool has_atlas = false;               // an atlas chunk gives TEXCOORD_0 (1.4)
   uint64_t header_size = 0;

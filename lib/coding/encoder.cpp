@@ -38,6 +38,9 @@ struct Prepared {
   const SemiRegularMesh* mesh = nullptr;
   float quantum = 1.0f;
   std::vector<double> base_weights;
+  // With no refinement levels the base is the decoded surface: its candidates add
+  // surface-frame codings, judged by distance to the input's face planes.
+  std::vector<Eigen::Matrix3d> base_quadrics;
   Mesh base;                       // level-0 values to code (input numbering)
   std::vector<MeshChunkEncoding> base_candidates;  // one per depth
   std::vector<uint8_t> kept_bytes;
@@ -134,7 +137,9 @@ StatusOr<Prepared> Prepare(const SemiRegularMesh& mesh, bitstream::TransformId t
   } else {
     p.base.positions = AnalyzeAllLevels(mesh.hierarchy, mesh.positions, transform).values[0];
   }
-  EQMESH_ASSIGN_OR_RETURN(p.base_candidates, EncodeBaseCandidates(p.base, draco_base));
+  const bool base_is_surface = mesh.hierarchy.levels() == 0;
+  if (base_is_surface) p.base_quadrics = SurfaceErrorQuadrics(p.base);
+  EQMESH_ASSIGN_OR_RETURN(p.base_candidates, EncodeBaseCandidates(p.base, draco_base, base_is_surface));
   if (!mesh.kept_exactly.faces.empty()) {
     // The compact chunk wherever it can hold the kept parts, so that a decoder built
     // without Draco reads the stream; Draco for non-manifold or inconsistently
@@ -204,7 +209,8 @@ const MeshChunkEncoding& ChooseBase(const Prepared& prep, const StreamHeader& he
   const double quantum = static_cast<double>(header.quantum);
   const double lambda_world = header.lambda() / (quantum * quantum);
   return prep.base_candidates[ChooseBaseCandidate(prep.base_candidates, prep.base, prep.base_weights,
-                                                  lambda_world, report)];
+                                                  lambda_world, report,
+                                                  prep.base_quadrics.empty() ? nullptr : &prep.base_quadrics)];
 }
 
 Pass FinishPass(StreamHeader header, const Prepared& prep, const MeshChunkEncoding& base,
@@ -212,11 +218,15 @@ Pass FinishPass(StreamHeader header, const Prepared& prep, const MeshChunkEncodi
                 const EncodeOptions& options) {
   Pass pass;
   if (base.compact) header.flags |= bitstream::kCompactBase;
+  if (base.compact || prep.kept_compact) {
+    header.flags |= bitstream::kCompactPositionsAfter;
+    header.version_minor = std::max(header.version_minor, bitstream::kVersionMinorPositionsAfter);
+  }
   pass.bytes = Assemble(header, base.bytes, prep.kept_bytes, chunks, &pass.report);
   pass.report.lambda = header.lambda();
   pass.report.tangential_factor = header.tangential_factor();
   pass.report.lambda_code = static_cast<int>(header.lambda_code);
-  pass.report.base_bits = base_report.bits;
+  pass.report.base_bits = base_report.depth;
   pass.report.base_compact = base.compact;
   if (options.input_vertices > 0) {
     pass.report.bpv = 8.0 * static_cast<double>(pass.bytes.size()) /

@@ -84,7 +84,7 @@ struct EncodeReport {
   double lambda = 0;          // as coded (after the log2 code)
   int lambda_code = 0;
   double tangential_factor = 1;  // as coded; --bpv may have moved it (EncodeOptions)
-  int base_bits = 0;          // depth chosen for the base scaling values
+  double base_bits = 0;       // depth chosen for the base scaling values (quarter bits)
   bool base_compact = false;  // compact base chunk (else Draco)
   size_t header_bytes = 0;
   size_t base_bytes = 0;

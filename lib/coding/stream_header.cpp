@@ -84,6 +84,9 @@ Status ReadCodingSetup(ByteReader* r, StreamHeader* h) {
   }
   if ((h->flags & ~bitstream::kKnownFlags) != 0) return r->Corrupt("unknown header flags");
   if (h->has_compact_kept() && !h->has_kept()) return r->Corrupt("compact-kept flag on a stream without a kept chunk");
+  if (h->has_positions_after() && !h->has_compact_base() && !h->has_compact_kept()) {
+    return r->Corrupt("positions-after flag on a stream without a compact chunk");
+  }
   if (h->has_tangential_context() && coder != static_cast<uint8_t>(bitstream::CoderId::kEq)) {
     return r->Corrupt("tangential-context flag on a stream whose coder is not EQ");
   }

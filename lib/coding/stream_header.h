@@ -31,6 +31,7 @@ struct StreamHeader {
   bool has_tangential_context() const { return (flags & bitstream::kTangentialContext) != 0; }
   bool has_atlas() const { return (flags & bitstream::kHasAtlas) != 0; }
   bool has_compact_kept() const { return (flags & bitstream::kCompactKept) != 0; }
+  bool has_positions_after() const { return (flags & bitstream::kCompactPositionsAfter) != 0; }
   double lambda() const;
   double tangential_factor() const;
 };

@@ -153,6 +153,7 @@ PrimitiveOutcome PrimitiveCompressor::Compress(size_t mesh_index, size_t primiti
   out.stream_bytes = geometry->stream.size();
   out.levels = static_cast<int>(geometry->chunk_lengths.size()) - 1;
   out.psnr_db = geometry->psnr_db;
+  out.as_is = geometry->as_is;
   out.note = geometry->note;
   return out;
 }

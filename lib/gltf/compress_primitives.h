@@ -54,6 +54,7 @@ struct CompressedGeometry {
   uint64_t triangle_budget = 0;         // the extension's triangleBudget (0: none)
   Mesh loaded;                          // what a loader decodes within it (empty: `decoded`)
   std::string note;                     // a warning for the report (empty: none)
+  bool as_is = false;                   // the stream codes the input as is, not a normal mesh
 };
 
 // Compresses one primitive; `label` ("mesh 0 primitive 1") is for progress and
@@ -85,6 +86,7 @@ struct PrimitiveOutcome {
   size_t output_vertices = 0, output_triangles = 0;
   size_t stream_bytes = 0;
   int levels = 0;
+  bool as_is = false;  // coded as is (representation_choice.h), not as a normal mesh
   double psnr_db = 0;
   std::string note;  // a warning about a compressed primitive (empty: none)
 };

@@ -8,6 +8,7 @@
 
 #include "coding/decoder.h"
 #include "coding/level_count_search.h"
+#include "coding/representation_choice.h"
 #include "gltf/accessor_io.h"
 #include "gltf/gltf_io.h"
 #include "gltf/stream_decoder.h"
@@ -55,7 +56,12 @@ StatusOr<CompressedGeometry> CompressWithEqmesh(const ConvertOptions& options, c
   EncodeReport encode_report;
   CompressedGeometry out;
   codec.max_triangles = budget;
-  auto stream = EncodeChoosingLevels(remeshed, codec, &encode_report);
+  // The input coded as is competes where the user left the remesh's shape open;
+  // not for textured primitives, whose atlas has a cell per base face.
+  const bool allow_as_is = !textured && remesh.levels < 0 && remesh.base_vertices < 0;
+  RepresentationReport choice;
+  auto stream = EncodeChoosingRepresentation(remeshed, codec, allow_as_is, remesh.repair, &encode_report, nullptr,
+                                             &choice);
   const bool floor_missed = stream.ok() && options.min_psnr > 0 && encode_report.psnr_db < options.min_psnr;
   if (budget > 0 && options.max_triangles < 0 &&
       (floor_missed || (!stream.ok() && stream.status().code() == StatusCode::kTargetOutOfReach))) {
@@ -74,10 +80,12 @@ StatusOr<CompressedGeometry> CompressWithEqmesh(const ConvertOptions& options, c
     }
     codec.max_triangles = 0;
     encode_report = EncodeReport();
-    stream = EncodeChoosingLevels(remeshed, codec, &encode_report);
+    stream = EncodeChoosingRepresentation(remeshed, codec, allow_as_is, remesh.repair, &encode_report, nullptr,
+                                          &choice);
   }
   if (!stream.ok()) return stream.status();
   out.stream = std::move(stream).value();
+  out.as_is = choice.as_is;
   out.triangle_budget = codec.max_triangles;
   if (options.min_psnr > 0 && encode_report.psnr_db < options.min_psnr) {
     EQMESH_ASSIGN_OR_RETURN(const double ceiling, RemeshCeilingPsnr(remeshed, mesh));

@@ -51,7 +51,7 @@ EncodeOptions GoldenOptions() {
 }
 
 std::string GoldenPath() {
-  return std::string(EQMESH_SOURCE_DIR) + "/tests/codec/data/golden_v1_5.eqm";
+  return std::string(EQMESH_SOURCE_DIR) + "/tests/codec/data/golden_v1_6.eqm";
 }
 
 std::vector<uint8_t> ReadBytes(const std::string& path) {

@@ -162,9 +162,9 @@ TEST(BaseMesh, RateDistortionChoiceMovesWithLambda) {
   BaseRdReport low, high;
   ASSERT_TRUE(EncodeBaseMesh(ico, weights, 1e2, &low).ok());
   ASSERT_TRUE(EncodeBaseMesh(ico, weights, 1e12, &high).ok());
-  EXPECT_LT(low.bits, high.bits);
-  EXPECT_GE(low.bits, bitstream::kBaseMinBits);
-  EXPECT_LE(high.bits, bitstream::kBaseMaxBits);
+  EXPECT_LT(low.depth, high.depth);
+  EXPECT_GE(low.depth, bitstream::kBaseMinBits);
+  EXPECT_LE(high.depth, bitstream::kBaseMaxBits);
 }
 
 TEST(Renumber, KeepsTheSurface) {

@@ -55,9 +55,14 @@ bool SameCells(const AtlasLayout& a, const AtlasLayout& b) {
 
 TEST(AtlasChunk, JoinsTheStreamWithoutChangingItsGeometry) {
   const Fixture f = MakeFixture();
-  // The atlas asks for 1.4 and leaves a stream that needs more (a compact kept chunk, 1.5) as it is.
-  const bool compact_kept = (f.plain[9] & bitstream::kCompactKept) != 0;  // the flags byte
-  EXPECT_EQ(f.plain[5], compact_kept ? bitstream::kVersionMinorCompactKept : bitstream::kVersionMinorWithoutAtlas);
+  // The atlas asks for 1.4 and leaves a stream that needs more (compact chunks in the
+  // positions-after layout, 1.6) as it is.
+  const uint8_t flags = f.plain[9];
+  const bool positions_after = (flags & bitstream::kCompactPositionsAfter) != 0;
+  const bool compact_kept = (flags & bitstream::kCompactKept) != 0;
+  EXPECT_EQ(f.plain[5], positions_after ? bitstream::kVersionMinorPositionsAfter
+                        : compact_kept  ? bitstream::kVersionMinorCompactKept
+                                        : bitstream::kVersionMinorWithoutAtlas);
   EXPECT_EQ(f.textured[5], std::max(f.plain[5], bitstream::kVersionMinorAtlas));
   auto info = ReadStreamInfo(f.textured.data(), f.textured.size());
   ASSERT_TRUE(info.ok());

@@ -21,9 +21,12 @@
 namespace eqmesh::testing {
 namespace {
 
-// Version 1.5: the kept tetrahedron in a compact chunk (kCompactKept).
-constexpr uint64_t kGoldenStreamHash = 0x940a7f7c474902feull;
+// Version 1.6: compact chunks in the positions-after layout (kCompactPositionsAfter).
+constexpr uint64_t kGoldenStreamHash = 0x3dc8a6bce69c9284ull;
 constexpr uint64_t kGoldenGeometryHash = 0x00dcd2c939480a35ull;
+// The version-1.5 golden (the kept tetrahedron in a compact chunk, kCompactKept; the
+// interleaved compact layout).
+constexpr uint64_t kV15GoldenGeometryHash = 0x00dcd2c939480a35ull;
 // The version-1.3 golden (context-modelled tangential components, coding/eq/; a Draco
 // kept chunk).
 constexpr uint64_t kV13GoldenGeometryHash = 0x5d1bc8753fe82da1ull;
@@ -41,7 +44,7 @@ constexpr uint64_t kSingleLambdaGoldenGeometryHash = 0x71e7acd35de5e8d0ull;
 // Whole pipeline (remesh + encode) on the bundled sample. Re-pin only for an
 // intended change to the remesher's output or to the format, and say so in the
 // commit (git log -- this file lists them).
-constexpr uint64_t kBlobStreamHash = 0x6e824fd9dde05025ull;
+constexpr uint64_t kBlobStreamHash = 0x5a317c25e4b5f6a1ull;
 
 // Positions (float32, as every consumer stores them) then indices.
 uint64_t GeometryHash(const Mesh& mesh) {
@@ -82,7 +85,8 @@ TEST(Determinism, GoldenStreamAndItsGeometryHaveThePinnedHashes) {
       {"golden_v1_1_full_base_weight.eqm", kFullBaseWeightGoldenGeometryHash},
       {"golden_v1_1.eqm", kV11GoldenGeometryHash},
       {"golden_v1_2.eqm", kV12GoldenGeometryHash},
-      {"golden_v1_3.eqm", kV13GoldenGeometryHash}};
+      {"golden_v1_3.eqm", kV13GoldenGeometryHash},
+      {"golden_v1_5.eqm", kV15GoldenGeometryHash}};
   for (const auto& [name, hash] : earlier) {
     const std::vector<uint8_t> old = ReadFileOrEmpty(data + name);
     auto old_mesh = Decode(old.data(), old.size());

@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "coding/compact_base/compact_base_model.h"
+#include "coding/compact_base/compact_positions.h"
 #include "coding/entropy/byte_io.h"
 
 namespace eqmesh {
@@ -12,10 +13,10 @@ namespace {
 struct ChunkHead {
   uint32_t vertices = 0;
   uint64_t faces = 0;
-  CompactGrid grid;
+  CompactPositionCoding coding;
 };
 
-Status ReadChunkHead(ByteReader* r, uint32_t max_vertices, ChunkHead* head) {
+Status ReadChunkHead(ByteReader* r, uint32_t max_vertices, CompactLayout layout, ChunkHead* head) {
   uint64_t v = 0;
   EQMESH_RETURN_IF_ERROR(r->ReadBoundedVarint(max_vertices, "vertex count", &v));
   if (v < 3) return r->Corrupt("fewer than 3 vertices");
@@ -26,23 +27,34 @@ Status ReadChunkHead(ByteReader* r, uint32_t max_vertices, ChunkHead* head) {
   uint8_t bits = 0;
   EQMESH_RETURN_IF_ERROR(r->ReadU8(&bits));
   if (bits < 1 || bits > kCompactMaxBits) return r->Corrupt("quantization depth out of range");
-  head->grid.bits = bits;
-  for (float& o : head->grid.origin) EQMESH_RETURN_IF_ERROR(r->ReadFiniteF32(&o));
-  EQMESH_RETURN_IF_ERROR(r->ReadFiniteF32(&head->grid.step));
-  if (!(head->grid.step > 0.0f)) return r->Corrupt("quantization step must be positive");
+  CompactGrid& grid = head->coding.grid;
+  grid.bits = bits;
+  for (float& o : grid.origin) EQMESH_RETURN_IF_ERROR(r->ReadFiniteF32(&o));
+  EQMESH_RETURN_IF_ERROR(r->ReadFiniteF32(&grid.step));
+  if (!(grid.step > 0.0f)) return r->Corrupt("quantization step must be positive");
+  if (layout == CompactLayout::kPositionsAfter) {
+    uint8_t quarters = 0;
+    EQMESH_RETURN_IF_ERROR(r->ReadU8(&quarters));
+    if (quarters < kGridTangentialQuarters) return r->Corrupt("tangential step below the grid step");
+    head->coding.tangential_quarters = quarters;
+  }
   return Status::Ok();
 }
 
 // The symbols of one chunk, read in the order the encoder wrote them.
 class ChunkReader {
  public:
-  ChunkReader(const ChunkHead& head, const uint8_t* data, size_t size)
-      : head_(head), dec_(data, size), state_(head.vertices) {}
+  ChunkReader(const ChunkHead& head, const uint8_t* data, size_t size, CompactLayout layout)
+      : head_(head), layout_(layout), dec_(data, size), state_(head.vertices) {}
 
   // False on any inconsistency (the caller reports it as corrupt).
   bool Run() {
     while (dec_.ok() && dec_.DecodeBit(&models_.more_components) != 0) {
       if (!SeedComponent() || !GrowComponent()) return false;
+    }
+    if (layout_ == CompactLayout::kPositionsAfter && dec_.ok() && quanta_.size() == head_.vertices &&
+        !DecodeCompactPositions(&dec_, head_.coding, state_.faces(), head_.vertices, &positions_)) {
+      return false;
     }
     return dec_.ok() && dec_.ConsumedAll() && state_.faces().size() == head_.faces &&
            quanta_.size() == head_.vertices;
@@ -50,8 +62,12 @@ class ChunkReader {
 
   Mesh TakeMesh() {
     Mesh mesh;
-    mesh.positions.reserve(quanta_.size());
-    for (const auto& q : quanta_) mesh.positions.push_back(head_.grid.Position(q));
+    if (layout_ == CompactLayout::kPositionsAfter) {
+      mesh.positions = std::move(positions_);
+    } else {
+      mesh.positions.reserve(quanta_.size());
+      for (const auto& q : quanta_) mesh.positions.push_back(head_.coding.grid.Position(q));
+    }
     mesh.faces = state_.faces();
     return mesh;
   }
@@ -60,9 +76,9 @@ class ChunkReader {
   bool NewVertex(const std::array<int32_t, 3>& prediction, CompactResidualModels* models, uint32_t* id) {
     if (quanta_.size() >= head_.vertices) return false;
     std::array<int32_t, 3> q{};
-    for (int k = 0; k < 3; ++k) {
+    for (int k = 0; k < 3 && layout_ == CompactLayout::kInterleaved; ++k) {
       const int64_t v = int64_t{prediction[static_cast<size_t>(k)]} + DecodeResidual(&dec_, models);
-      if (v < 0 || v > head_.grid.MaxIndex()) return false;
+      if (v < 0 || v > head_.coding.grid.MaxIndex()) return false;
       q[static_cast<size_t>(k)] = static_cast<int32_t>(v);
     }
     *id = static_cast<uint32_t>(quanta_.size());
@@ -84,7 +100,7 @@ class ChunkReader {
     uint32_t corner[3] = {0, 0, 0};
     for (uint32_t& id : corner) {
       const bool ok = dec_.DecodeBit(&models_.is_new) != 0
-                          ? NewVertex(SeedPrediction(head_.grid, quanta_), &models_.seed, &id)
+                          ? NewVertex(SeedPrediction(head_.coding.grid, quanta_), &models_.seed, &id)
                           : GlobalIndex(&id);
       if (!ok) return false;
     }
@@ -95,9 +111,10 @@ class ChunkReader {
     if (dec_.DecodeBit(&models_.in_candidates) == 0) return GlobalIndex(id);
     state_.Candidates(g.a, g.b, &candidates_);
     if (candidates_.empty()) return false;
-    const int bits = IndexBits(candidates_.size());
-    const uint64_t k = bits > 0 ? dec_.DecodeBits(bits) : 0;
-    if (k >= candidates_.size()) return false;
+    uint64_t k = 0;
+    if (!DecodeCandidateIndex(&dec_, &models_, layout_, GateContext(state_, g), candidates_.size(), &k)) {
+      return false;
+    }
     *id = candidates_[static_cast<size_t>(k)];
     return dec_.ok();
   }
@@ -107,8 +124,8 @@ class ChunkReader {
     while (dec_.ok() && state_.NextGate(&g)) {
       if (dec_.DecodeBit(&models_.has_face) == 0) continue;
       uint32_t d = 0;
-      const bool ok = dec_.DecodeBit(&models_.is_new) != 0
-                          ? NewVertex(ParallelogramPrediction(head_.grid, quanta_[g.a], quanta_[g.b], quanta_[g.c]),
+      const bool ok = dec_.DecodeBit(GateIsNewModel(&models_, layout_, state_, g)) != 0
+                          ? NewVertex(ParallelogramPrediction(head_.coding.grid, quanta_[g.a], quanta_[g.b], quanta_[g.c]),
                                       &models_.predicted, &d)
                           : ExistingCorner(g, &d);
       if (!ok || !AddFace(g.b, g.a, d)) return false;
@@ -121,20 +138,22 @@ class ChunkReader {
   }
 
   const ChunkHead& head_;
+  const CompactLayout layout_;
   RangeDecoder dec_;
   CompactBaseState state_;
   CompactModels models_;
-  std::vector<std::array<int32_t, 3>> quanta_;
+  std::vector<std::array<int32_t, 3>> quanta_;  // grid indices (interleaved); placeholders otherwise
+  std::vector<Vec3> positions_;                  // positions-after layout
   std::vector<uint32_t> candidates_;
 };
 
 }  // namespace
 
 StatusOr<Mesh> DecodeCompactBase(const uint8_t* data, size_t size, uint32_t max_vertices,
-                                 const std::string& what) {
+                                 const std::string& what, CompactLayout layout) {
   ByteReader r(data, size, what);
   ChunkHead head;
-  EQMESH_RETURN_IF_ERROR(ReadChunkHead(&r, max_vertices, &head));
+  EQMESH_RETURN_IF_ERROR(ReadChunkHead(&r, max_vertices, layout, &head));
   const uint8_t* payload = nullptr;
   const size_t payload_size = r.remaining();
   if (head.vertices > kCompactMaxVerticesPerByte * payload_size + kCompactFaceSlack) {
@@ -142,7 +161,7 @@ StatusOr<Mesh> DecodeCompactBase(const uint8_t* data, size_t size, uint32_t max_
                          std::to_string(payload_size) + " payload bytes");
   }
   EQMESH_RETURN_IF_ERROR(r.ReadSpan(payload_size, &payload));
-  ChunkReader reader(head, payload, payload_size);
+  ChunkReader reader(head, payload, payload_size, layout);
   if (!reader.Run()) {
     return CorruptStream(what + ": connectivity or positions corrupt or truncated (" +
                          std::to_string(head.vertices) + " vertices, " + std::to_string(head.faces) +

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <string>
 
+#include "coding/compact_base/compact_base_model.h"
 #include "core/status.h"
 #include "mesh/mesh.h"
 
@@ -16,6 +17,7 @@ namespace eqmesh {
 // Decodes a compact chunk into positions and faces (the chunk's vertex order).
 // `max_vertices` bounds the vertex count; `what` prefixes errors.
 StatusOr<Mesh> DecodeCompactBase(const uint8_t* data, size_t size, uint32_t max_vertices,
-                                 const std::string& what);
+                                 const std::string& what,
+                                 CompactLayout layout = CompactLayout::kPositionsAfter);
 
 }  // namespace eqmesh

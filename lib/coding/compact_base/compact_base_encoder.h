@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "coding/compact_base/compact_base_model.h"
+#include "coding/compact_base/compact_positions.h"
 #include "core/status.h"
 #include "mesh/mesh.h"
 
@@ -15,10 +17,28 @@ struct CompactBaseEncoding {
   std::vector<uint32_t> decoded_to_input;  // decoded vertex i was input vertex [i]
 };
 
-// Codes `mesh` with positions on a grid of 2^bits steps over its largest extent.
+// Codes `mesh` with positions on a grid of 2^depth - 1 steps over its largest extent
+// (depth need not be whole: the chunk records the step, and indices use
+// ceil(depth) bits).
 // kUnsupportedFeature when the mesh is not a manifold, consistently oriented
 // triangle mesh with every vertex on a face (the caller then uses the Draco chunk),
 // or when float32 cannot hold the grid.
-StatusOr<CompactBaseEncoding> EncodeCompactBase(const Mesh& mesh, int bits);
+// tangential_quarters > 4 (positions-after layout only) codes positions in surface
+// frames with a tangential step of tangential_quarters / 4 grid steps
+// (compact_positions.h).
+inline constexpr int kCompactMaxTangentialQuarters = 255;
+
+struct CompactVariant {
+  double depth = 0;
+  int tangential_quarters = kGridTangentialQuarters;
+};
+
+// The positions-after chunk for each variant, the connectivity traversed once.
+StatusOr<std::vector<CompactBaseEncoding>> EncodeCompactBaseVariants(const Mesh& mesh,
+                                                                     const std::vector<CompactVariant>& variants);
+
+StatusOr<CompactBaseEncoding> EncodeCompactBase(const Mesh& mesh, double depth,
+                                               CompactLayout layout = CompactLayout::kPositionsAfter,
+                                               int tangential_quarters = kGridTangentialQuarters);
 
 }  // namespace eqmesh

@@ -2,6 +2,7 @@
 #include "coding/compact_base/compact_base_model.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace eqmesh {
 
@@ -10,6 +11,15 @@ Vec3 CompactGrid::Position(const std::array<int32_t, 3>& q) const {
   return Vec3(static_cast<double>(origin[0]) + static_cast<double>(q[0]) * s,
               static_cast<double>(origin[1]) + static_cast<double>(q[1]) * s,
               static_cast<double>(origin[2]) + static_cast<double>(q[2]) * s);
+}
+
+std::array<int32_t, 3> QuantizeToGrid(const CompactGrid& grid, const Vec3& p) {
+  std::array<int32_t, 3> q{};
+  for (size_t k = 0; k < 3; ++k) {
+    const double v = (p[static_cast<int>(k)] - static_cast<double>(grid.origin[k])) / static_cast<double>(grid.step);
+    q[k] = static_cast<int32_t>(std::clamp<double>(std::round(v), 0.0, grid.MaxIndex()));
+  }
+  return q;
 }
 
 uint32_t CompactBaseState::EdgeFaces(uint32_t u, uint32_t v) const {
@@ -31,6 +41,7 @@ bool CompactBaseState::AddFace(uint32_t a, uint32_t b, uint32_t c) {
       neighbours_[v].push_back(u);
     }
     gates_.push_back({u, v, corners[(k + 2) % 3]});
+    ++faces_around_[u];
   }
   faces_.push_back({a, b, c});
   return true;
@@ -108,6 +119,62 @@ int64_t DecodeResidual(RangeDecoder* dec, CompactResidualModels* models) {
   }
   const int64_t v = (int64_t{1} << p) + (p > 0 ? static_cast<int64_t>(dec->DecodeBits(p)) : 0);
   return negative ? -v : v;
+}
+
+size_t GateContext(const CompactBaseState& state, const CompactGate& gate) {
+  const auto capped = [&](uint32_t v) { return std::min<size_t>(state.FacesAround(v), kGateFanCap); };
+  return capped(gate.a) * (kGateFanCap + 1) + capped(gate.b);
+}
+
+AdaptiveBit* GateIsNewModel(CompactModels* models, CompactLayout layout, const CompactBaseState& state,
+                            const CompactGate& gate) {
+  if (layout == CompactLayout::kInterleaved) return &models->is_new;
+  return &models->gate_is_new[GateContext(state, gate)];
+}
+
+void EncodeCandidateIndex(RangeEncoder* enc, CompactModels* models, CompactLayout layout, size_t context,
+                          uint64_t k, uint64_t count) {
+  if (layout == CompactLayout::kInterleaved || count <= 1) {
+    const int bits = IndexBits(count);
+    if (bits > 0) enc->EncodeBits(static_cast<uint32_t>(k), bits);
+    return;
+  }
+  enc->EncodeBit(&models->gate_first_candidate[context], k == 0);
+  for (uint64_t j = 1; j < kUnaryCandidates && j + 1 < count; ++j) {
+    if (k < j) return;
+    enc->EncodeBit(&models->later_candidate[j - 1], k == j);
+  }
+  if (k >= kUnaryCandidates && count > kUnaryCandidates) {
+    const int bits = IndexBits(count - kUnaryCandidates);
+    if (bits > 0) enc->EncodeBits(static_cast<uint32_t>(k - kUnaryCandidates), bits);
+  }
+}
+
+bool DecodeCandidateIndex(RangeDecoder* dec, CompactModels* models, CompactLayout layout, size_t context,
+                          uint64_t count, uint64_t* k) {
+  if (layout == CompactLayout::kInterleaved || count <= 1) {
+    const int bits = IndexBits(count);
+    *k = bits > 0 ? dec->DecodeBits(bits) : 0;
+    return *k < count;
+  }
+  if (dec->DecodeBit(&models->gate_first_candidate[context]) != 0) {
+    *k = 0;
+    return true;
+  }
+  uint64_t j = 1;
+  for (; j < kUnaryCandidates && j + 1 < count; ++j) {
+    if (dec->DecodeBit(&models->later_candidate[j - 1]) != 0) {
+      *k = j;
+      return true;
+    }
+  }
+  if (j < kUnaryCandidates) {  // the unary steps ran out at the last candidate
+    *k = j;
+    return true;
+  }
+  const int bits = IndexBits(count - kUnaryCandidates);
+  *k = kUnaryCandidates + (bits > 0 ? dec->DecodeBits(bits) : 0);
+  return *k < count;
 }
 
 }  // namespace eqmesh

@@ -32,6 +32,13 @@
 
 namespace eqmesh {
 
+// Order of a compact chunk's symbols. kInterleaved (streams 1.2-1.5): each new
+// vertex's residuals follow the gate event that discovers it, predicted by that
+// gate's parallelogram. kPositionsAfter (1.6, header flag kCompactPositionsAfter):
+// every connectivity event first, then the positions in vertex order, predicted
+// from every complete parallelogram around the vertex (compact_positions.h).
+enum class CompactLayout { kInterleaved, kPositionsAfter };
+
 // Largest quantization depth of a compact chunk (bits per coordinate).
 inline constexpr int kCompactMaxBits = 24;
 // A compact chunk may not claim more faces than this many per vertex (plus a
@@ -57,6 +64,9 @@ struct CompactGrid {
   Vec3 Position(const std::array<int32_t, 3>& q) const;
 };
 
+// The nearest grid index of p on each axis, clamped to the grid (encoder side).
+std::array<int32_t, 3> QuantizeToGrid(const CompactGrid& grid, const Vec3& p);
+
 // Key of the undirected edge {u, v} in both sides' edge maps.
 inline uint64_t CompactEdgeKey(uint32_t u, uint32_t v) {
   return (uint64_t{u > v ? u : v} << 32) | (u > v ? v : u);
@@ -70,7 +80,7 @@ struct CompactGate {
 // The traversal state both sides build identically from the faces coded so far.
 class CompactBaseState {
  public:
-  explicit CompactBaseState(uint32_t num_vertices) : neighbours_(num_vertices) {}
+  explicit CompactBaseState(uint32_t num_vertices) : neighbours_(num_vertices), faces_around_(num_vertices, 0) {}
 
   // Adds face (a, b, c) and queues its gates (a->b, b->c, c->a). False when a corner
   // repeats or an edge would get a third face.
@@ -81,6 +91,7 @@ class CompactBaseState {
   // edges appeared), without a, b or repeats.
   void Candidates(uint32_t a, uint32_t b, std::vector<uint32_t>* out) const;
   const std::vector<Face>& faces() const { return faces_; }
+  uint32_t FacesAround(uint32_t v) const { return faces_around_[v]; }
 
  private:
   uint32_t EdgeFaces(uint32_t u, uint32_t v) const;
@@ -88,6 +99,7 @@ class CompactBaseState {
 
   std::unordered_map<uint64_t, uint8_t> edge_faces_;  // looked up only, never iterated
   std::vector<std::vector<uint32_t>> neighbours_;     // in the order edges appeared
+  std::vector<uint32_t> faces_around_;                // faces added at each vertex so far
   std::deque<CompactGate> gates_;
   std::vector<Face> faces_;
 };
@@ -97,10 +109,35 @@ struct CompactResidualModels {
   AdaptiveBit zero;
   std::array<AdaptiveBit, kCompactMaxPrefix + 1> prefix;
 };
+// Contexts of a gate's events in the positions-after layout: the faces already
+// around each of its two corners (0..6+ each). A corner whose fan is nearly full is
+// likely to be closed by this face, which then reuses a vertex instead of adding one.
+inline constexpr int kGateFanCap = 6;
+inline constexpr size_t kGateContexts = (kGateFanCap + 1) * (kGateFanCap + 1);
+// Candidate positions after the first with a unary model each; later ones are bypass.
+inline constexpr uint32_t kUnaryCandidates = 4;
+
 struct CompactModels {
   AdaptiveBit more_components, has_face, is_new, in_candidates;
   CompactResidualModels predicted, seed;  // parallelogram residuals, seed-face residuals
+  // Positions-after layout only: is_new and "the first candidate" per gate context,
+  // and the unary steps of later candidate positions.
+  std::array<AdaptiveBit, kGateContexts> gate_is_new, gate_first_candidate;
+  std::array<AdaptiveBit, kUnaryCandidates - 1> later_candidate;
 };
+
+size_t GateContext(const CompactBaseState& state, const CompactGate& gate);
+// The model of a gate's is_new event in `layout`.
+AdaptiveBit* GateIsNewModel(CompactModels* models, CompactLayout layout, const CompactBaseState& state,
+                            const CompactGate& gate);
+// Position k of the third corner among `count` candidates: bypass bits in the
+// interleaved layout; in the positions-after layout "first?" by gate context, then
+// unary steps up to kUnaryCandidates, then bypass bits of the rest.
+void EncodeCandidateIndex(RangeEncoder* enc, CompactModels* models, CompactLayout layout, size_t context,
+                          uint64_t k, uint64_t count);
+// False when the index read is not below count.
+bool DecodeCandidateIndex(RangeDecoder* dec, CompactModels* models, CompactLayout layout, size_t context,
+                          uint64_t count, uint64_t* k);
 
 // Prediction of a new vertex across gate (a, b, c): q_a + q_b - q_c, clamped to the grid.
 std::array<int32_t, 3> ParallelogramPrediction(const CompactGrid& grid, const std::array<int32_t, 3>& a,

@@ -1,0 +1,73 @@
+// Representation choice: see representation_choice.h.
+#include "coding/representation_choice.h"
+
+#include <utility>
+
+#include "remesh/remesh.h"
+
+namespace eqmesh {
+
+StatusOr<SemiRegularMesh> AsIsMesh(const Mesh& input, bool repair) {
+  RemeshOptions options;
+  options.levels = 0;
+  options.base_vertices = static_cast<int>(input.positions.size());
+  options.repair = repair;
+  RemeshReport report;
+  return Remesh(input, options, &report);
+}
+
+namespace {
+
+bool Targeted(const EncodeOptions& options) { return options.target_psnr > 0 || options.target_bpv > 0; }
+
+// True when `b` (as is) should replace `a` (remeshed), both encoded.
+bool AsIsIsBetter(const EncodeOptions& options, const EncodeReport& a, const EncodeReport& b) {
+  if (options.target_psnr > 0) return b.total_bytes < a.total_bytes;
+  return b.psnr_db > a.psnr_db;
+}
+
+}  // namespace
+
+StatusOr<std::vector<uint8_t>> EncodeChoosingRepresentation(const SemiRegularMesh& remeshed,
+                                                            const EncodeOptions& options, bool allow_as_is,
+                                                            bool repair, EncodeReport* report,
+                                                            LevelCountReport* levels,
+                                                            RepresentationReport* choice) {
+  RepresentationReport local;
+  RepresentationReport& c = choice ? *choice : local;
+  c = RepresentationReport();
+  EncodeReport remeshed_report;
+  LevelCountReport remeshed_levels;
+  auto stream = EncodeChoosingLevels(remeshed, options, &remeshed_report, &remeshed_levels);
+  const bool out_of_reach = !stream.ok() && stream.status().code() == StatusCode::kTargetOutOfReach;
+  if (stream.ok()) {
+    c.remeshed_bytes = stream->size();
+    c.remeshed_psnr_db = remeshed_report.psnr_db;
+  }
+  const bool worth_trying = out_of_reach || (stream.ok() && remeshed_report.bpv >= kAsIsMinBpv);
+  if (allow_as_is && options.original != nullptr && Targeted(options) && worth_trying) {
+    c.tried_as_is = true;
+    auto as_is_mesh = AsIsMesh(*options.original, repair);
+    if (as_is_mesh.ok()) {
+      EncodeReport as_is_report;
+      LevelCountReport as_is_levels;
+      auto as_is = EncodeChoosingLevels(*as_is_mesh, options, &as_is_report, &as_is_levels);
+      if (as_is.ok()) {
+        c.as_is_bytes = as_is->size();
+        c.as_is_psnr_db = as_is_report.psnr_db;
+      }
+      if (as_is.ok() && (!stream.ok() || AsIsIsBetter(options, remeshed_report, as_is_report))) {
+        c.as_is = true;
+        if (report) *report = as_is_report;
+        if (levels) *levels = std::move(as_is_levels);
+        return as_is;
+      }
+    }
+  }
+  if (!stream.ok()) return stream.status();
+  if (report) *report = remeshed_report;
+  if (levels) *levels = std::move(remeshed_levels);
+  return stream;
+}
+
+}  // namespace eqmesh

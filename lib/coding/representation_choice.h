@@ -1,0 +1,51 @@
+// Which representation a mesh travels in: the remeshed normal mesh, or the input
+// itself coded as is (a stream with no refinement levels whose base is the input,
+// in the compact chunk's surface frames, compact_positions.h).
+//
+// The normal-mesh codec wins where the input is dense next to its shape (scans,
+// sculpts: a few bits per input vertex reach 70 dB, the seed paper's regime). On a
+// low-poly asset (a few thousand vertices, creases, thin parts) the semi-regular
+// form needs more vertices than the artist's mesh to reach the same error, and no
+// coder of its coefficients can then beat a good coder of the input itself. The
+// encoder measures both where the second can win and keeps the better: for a PSNR
+// target the smaller stream that meets it, for a rate target the higher PSNR.
+// Departure from the seed: the seed codes every input as a normal mesh.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "coding/encoder.h"
+#include "coding/level_count_search.h"
+#include "core/status.h"
+#include "mesh/mesh.h"
+#include "mesh/semi_regular.h"
+
+namespace eqmesh {
+
+// An as-is stream costs at least its connectivity, about 2-3 bits per vertex: a
+// remeshed stream below this rate is not worth the comparison.
+inline constexpr double kAsIsMinBpv = 3.0;
+
+// The input as a semi-regular mesh with no levels (base = input).
+StatusOr<SemiRegularMesh> AsIsMesh(const Mesh& input, bool repair);
+
+struct RepresentationReport {
+  bool tried_as_is = false;
+  bool as_is = false;            // the stream returned codes the input as is
+  size_t remeshed_bytes = 0;     // 0 when that stream failed
+  double remeshed_psnr_db = 0;
+  size_t as_is_bytes = 0;        // 0 when not tried or failed
+  double as_is_psnr_db = 0;
+};
+
+// EncodeChoosingLevels(remeshed) and, with a bpv or PSNR target, options.original
+// set, `allow_as_is` and the remeshed stream at or above kAsIsMinBpv (or short of
+// its target), the input coded as is; returns the better as above.
+StatusOr<std::vector<uint8_t>> EncodeChoosingRepresentation(const SemiRegularMesh& remeshed,
+                                                            const EncodeOptions& options, bool allow_as_is,
+                                                            bool repair, EncodeReport* report,
+                                                            LevelCountReport* levels,
+                                                            RepresentationReport* choice);
+
+}  // namespace eqmesh
