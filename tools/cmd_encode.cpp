@@ -359,9 +359,10 @@ int RunEncode(int argc, char** argv) {
   const auto encode_start = std::chrono::steady_clock::now();
   RepresentationReport choice;
   // An explicit --levels or --base-vertices asks for a normal mesh of that shape.
-  const bool allow_as_is = !srm_input && a.levels < 0 && a.base_vertices < 0;
-  auto bytes = EncodeChoosingRepresentation(source->remeshed, options, allow_as_is, a.repair, &report, &search,
-                                            &choice);
+  RepresentationOptions representation;
+  representation.allow_as_is = !srm_input && a.levels < 0 && a.base_vertices < 0;
+  representation.repair = a.repair;
+  auto bytes = EncodeChoosingRepresentation(source->remeshed, options, representation, &report, &search, &choice);
   ClearTerminalProgress(options.progress);
   if (!bytes.ok()) return Fail(kName, a.in_path + ": " + bytes.status().message());
   const double encode_seconds = SecondsSince(encode_start);

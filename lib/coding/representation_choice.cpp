@@ -8,12 +8,26 @@
 namespace eqmesh {
 
 StatusOr<SemiRegularMesh> AsIsMesh(const Mesh& input, bool repair) {
+  // The remesher's preparation (unreferenced vertices dropped, manifold checks or
+  // repair) with no simplification and no levels; then the small components it
+  // sets aside join the base, which codes them better than the kept chunk's fixed
+  // 20-bit grid.
   RemeshOptions options;
   options.levels = 0;
   options.base_vertices = static_cast<int>(input.positions.size());
   options.repair = repair;
   RemeshReport report;
-  return Remesh(input, options, &report);
+  EQMESH_ASSIGN_OR_RETURN(SemiRegularMesh mesh, Remesh(input, options, &report));
+  if (mesh.kept_exactly.faces.empty()) return mesh;
+  Mesh base;
+  base.positions = std::move(mesh.positions);
+  base.faces = mesh.hierarchy.BaseFaces();
+  AppendKeptComponents(mesh.kept_exactly, &base);
+  SemiRegularMesh out;
+  EQMESH_ASSIGN_OR_RETURN(out.hierarchy, SemiRegularHierarchy::Build(static_cast<uint32_t>(base.positions.size()),
+                                                                     std::move(base.faces), 0));
+  out.positions = std::move(base.positions);
+  return out;
 }
 
 namespace {
@@ -26,12 +40,22 @@ bool AsIsIsBetter(const EncodeOptions& options, const EncodeReport& a, const Enc
   return b.psnr_db > a.psnr_db;
 }
 
+// Whether the as-is stream is worth encoding after the remeshed one.
+bool WorthTrying(const EncodeOptions& options, const RepresentationOptions& representation,
+                 const StatusOr<std::vector<uint8_t>>& stream, const EncodeReport& report) {
+  if (!representation.allow_as_is || options.original == nullptr) return false;
+  const bool out_of_reach = !stream.ok() && stream.status().code() == StatusCode::kTargetOutOfReach;
+  if (Targeted(options)) return out_of_reach || (stream.ok() && report.bpv >= kAsIsMinBpv);
+  return representation.floor_db > 0 && options.measure_psnr &&
+         (out_of_reach || (stream.ok() && report.psnr_db < representation.floor_db));
+}
+
 }  // namespace
 
 StatusOr<std::vector<uint8_t>> EncodeChoosingRepresentation(const SemiRegularMesh& remeshed,
-                                                            const EncodeOptions& options, bool allow_as_is,
-                                                            bool repair, EncodeReport* report,
-                                                            LevelCountReport* levels,
+                                                            const EncodeOptions& options,
+                                                            const RepresentationOptions& representation,
+                                                            EncodeReport* report, LevelCountReport* levels,
                                                             RepresentationReport* choice) {
   RepresentationReport local;
   RepresentationReport& c = choice ? *choice : local;
@@ -39,15 +63,13 @@ StatusOr<std::vector<uint8_t>> EncodeChoosingRepresentation(const SemiRegularMes
   EncodeReport remeshed_report;
   LevelCountReport remeshed_levels;
   auto stream = EncodeChoosingLevels(remeshed, options, &remeshed_report, &remeshed_levels);
-  const bool out_of_reach = !stream.ok() && stream.status().code() == StatusCode::kTargetOutOfReach;
   if (stream.ok()) {
     c.remeshed_bytes = stream->size();
     c.remeshed_psnr_db = remeshed_report.psnr_db;
   }
-  const bool worth_trying = out_of_reach || (stream.ok() && remeshed_report.bpv >= kAsIsMinBpv);
-  if (allow_as_is && options.original != nullptr && Targeted(options) && worth_trying) {
+  if (WorthTrying(options, representation, stream, remeshed_report)) {
     c.tried_as_is = true;
-    auto as_is_mesh = AsIsMesh(*options.original, repair);
+    auto as_is_mesh = AsIsMesh(*options.original, representation.repair);
     if (as_is_mesh.ok()) {
       EncodeReport as_is_report;
       LevelCountReport as_is_levels;

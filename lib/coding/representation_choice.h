@@ -25,7 +25,7 @@ namespace eqmesh {
 
 // An as-is stream costs at least its connectivity, about 2-3 bits per vertex: a
 // remeshed stream below this rate is not worth the comparison.
-inline constexpr double kAsIsMinBpv = 3.0;
+inline constexpr double kAsIsMinBpv = 4.0;
 
 // The input as a semi-regular mesh with no levels (base = input).
 StatusOr<SemiRegularMesh> AsIsMesh(const Mesh& input, bool repair);
@@ -39,13 +39,24 @@ struct RepresentationReport {
   double as_is_psnr_db = 0;
 };
 
-// EncodeChoosingLevels(remeshed) and, with a bpv or PSNR target, options.original
-// set, `allow_as_is` and the remeshed stream at or above kAsIsMinBpv (or short of
-// its target), the input coded as is; returns the better as above.
+struct RepresentationOptions {
+  // Whether the input may travel as is: false where the caller asked for a normal
+  // mesh of a given shape (levels, base size) or needs one (an atlas).
+  bool allow_as_is = false;
+  bool repair = false;  // RemeshOptions::repair for the as-is mesh
+  // Without a target: compare when the normal mesh measures below this PSNR (0:
+  // never); options.measure_psnr must be set.
+  double floor_db = 0;
+};
+
+// EncodeChoosingLevels(remeshed) and, where allowed, options.original set, and
+// either a bpv or PSNR target with the remeshed stream at or above kAsIsMinBpv (or
+// short of its target) or no target with the remeshed stream below the floor, the
+// input coded as is; returns the better (without a target: the higher PSNR).
 StatusOr<std::vector<uint8_t>> EncodeChoosingRepresentation(const SemiRegularMesh& remeshed,
-                                                            const EncodeOptions& options, bool allow_as_is,
-                                                            bool repair, EncodeReport* report,
-                                                            LevelCountReport* levels,
+                                                            const EncodeOptions& options,
+                                                            const RepresentationOptions& representation,
+                                                            EncodeReport* report, LevelCountReport* levels,
                                                             RepresentationReport* choice);
 
 }  // namespace eqmesh

@@ -58,10 +58,12 @@ StatusOr<CompressedGeometry> CompressWithEqmesh(const ConvertOptions& options, c
   codec.max_triangles = budget;
   // The input coded as is competes where the user left the remesh's shape open;
   // not for textured primitives, whose atlas has a cell per base face.
-  const bool allow_as_is = !textured && remesh.levels < 0 && remesh.base_vertices < 0;
+  RepresentationOptions representation;
+  representation.allow_as_is = !textured && remesh.levels < 0 && remesh.base_vertices < 0;
+  representation.repair = remesh.repair;
+  representation.floor_db = options.min_psnr;
   RepresentationReport choice;
-  auto stream = EncodeChoosingRepresentation(remeshed, codec, allow_as_is, remesh.repair, &encode_report, nullptr,
-                                             &choice);
+  auto stream = EncodeChoosingRepresentation(remeshed, codec, representation, &encode_report, nullptr, &choice);
   const bool floor_missed = stream.ok() && options.min_psnr > 0 && encode_report.psnr_db < options.min_psnr;
   if (budget > 0 && options.max_triangles < 0 &&
       (floor_missed || (!stream.ok() && stream.status().code() == StatusCode::kTargetOutOfReach))) {
@@ -80,8 +82,7 @@ StatusOr<CompressedGeometry> CompressWithEqmesh(const ConvertOptions& options, c
     }
     codec.max_triangles = 0;
     encode_report = EncodeReport();
-    stream = EncodeChoosingRepresentation(remeshed, codec, allow_as_is, remesh.repair, &encode_report, nullptr,
-                                          &choice);
+    stream = EncodeChoosingRepresentation(remeshed, codec, representation, &encode_report, nullptr, &choice);
   }
   if (!stream.ok()) return stream.status();
   out.stream = std::move(stream).value();

@@ -1,0 +1,104 @@
+// Representation choice (coding/representation_choice.h): a low-poly mesh travels
+// as is when that is smaller, still meets its PSNR target and keeps its own
+// triangles; a dense smooth one is not compared below kAsIsMinBpv; the as-is mesh
+// holds every component in its base.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "codec_fixtures.h"
+#include "coding/decoder.h"
+#include "coding/representation_choice.h"
+#include "metrics/surface_distance.h"
+#include "remesh/remesh.h"
+#include "test_support.h"
+
+namespace eqmesh {
+namespace {
+
+// An icosphere with each vertex pushed out by up to 20 %: flat facets, sharp
+// creases, nothing a subdivision surface predicts.
+Mesh Gem() {
+  Mesh m = testing::MakeIcosphere(1);
+  uint32_t state = 99;
+  for (Vec3& p : m.positions) {
+    state = state * 1664525u + 1013904223u;
+    p *= 1.0 + 0.2 * static_cast<double>(state >> 8) / static_cast<double>(1u << 24);
+  }
+  return m;
+}
+
+TEST(RepresentationChoice, AsIsMeshHoldsEveryComponentInItsBase) {
+  Mesh mesh = testing::MakeIcosphere(2);
+  const uint32_t offset = static_cast<uint32_t>(mesh.positions.size());
+  // A small tetrahedron: a component the remesher sets aside (kept_exactly).
+  for (const Vec3& p : {Vec3(3, 0, 0), Vec3(3.1, 0, 0), Vec3(3, 0.1, 0), Vec3(3, 0, 0.1)}) mesh.positions.push_back(p);
+  for (const Face& f : std::vector<Face>{{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}}) {
+    mesh.faces.push_back({f[0] + offset, f[1] + offset, f[2] + offset});
+  }
+  auto as_is = AsIsMesh(mesh, false);
+  ASSERT_TRUE(as_is.ok()) << as_is.status().ToString();
+  EXPECT_EQ(as_is->hierarchy.levels(), 0);
+  EXPECT_TRUE(as_is->kept_exactly.faces.empty());
+  EXPECT_EQ(as_is->positions.size(), mesh.positions.size());
+  EXPECT_EQ(as_is->hierarchy.BaseFaces().size(), mesh.faces.size());
+}
+
+TEST(RepresentationChoice, LowPolyMeshTravelsAsIsAndMeetsItsTarget) {
+  const Mesh gem = Gem();
+  RemeshReport remesh_report;
+  RemeshOptions remesh;
+  remesh.levels = 2;  // a short level search: the test is about the choice
+  auto remeshed = Remesh(gem, remesh, &remesh_report);
+  ASSERT_TRUE(remeshed.ok()) << remeshed.status().ToString();
+  EncodeOptions options;
+  options.original = &gem;
+  options.input_vertices = gem.positions.size();
+  options.target_psnr = 55.0;
+  EncodeReport report;
+  RepresentationReport choice;
+  RepresentationOptions allowed;
+  allowed.allow_as_is = true;
+  auto stream = EncodeChoosingRepresentation(*remeshed, options, allowed, &report, nullptr, &choice);
+  ASSERT_TRUE(stream.ok()) << stream.status().ToString();
+  ASSERT_TRUE(choice.tried_as_is);
+  EXPECT_TRUE(choice.as_is);
+  EXPECT_EQ(stream->size(), choice.as_is_bytes);
+  if (choice.remeshed_bytes > 0) {
+    EXPECT_LT(choice.as_is_bytes, choice.remeshed_bytes);
+  }
+  auto decoded = Decode(stream->data(), stream->size());
+  ASSERT_TRUE(decoded.ok());
+  EXPECT_EQ(decoded->faces.size(), gem.faces.size());  // the artist's triangles, no more
+  auto distance = CompareSurfaces(gem, *decoded);
+  ASSERT_TRUE(distance.ok());
+  EXPECT_GE(distance->psnr_db, 55.0);
+  EXPECT_DOUBLE_EQ(distance->psnr_db, report.psnr_db);
+  // Not allowed (an explicit level count, say): the normal mesh is kept.
+  RepresentationReport kept;
+  auto normal = EncodeChoosingRepresentation(*remeshed, options, RepresentationOptions{}, nullptr, nullptr, &kept);
+  ASSERT_TRUE(normal.ok());
+  EXPECT_FALSE(kept.tried_as_is);
+  EXPECT_FALSE(kept.as_is);
+}
+
+TEST(RepresentationChoice, DenseSmoothMeshIsNotComparedBelowTheConnectivityCost) {
+  const SemiRegularMesh mesh = testing::MakeBumpySphere(3);
+  const Mesh original = ExtractLevel(mesh, mesh.hierarchy.levels());
+  EncodeOptions options;
+  options.original = &original;
+  options.input_vertices = original.positions.size();
+  options.target_psnr = 45.0;
+  EncodeReport report;
+  RepresentationReport choice;
+  RepresentationOptions allowed;
+  allowed.allow_as_is = true;
+  auto stream = EncodeChoosingRepresentation(mesh, options, allowed, &report, nullptr, &choice);
+  ASSERT_TRUE(stream.ok()) << stream.status().ToString();
+  EXPECT_LT(report.bpv, kAsIsMinBpv);
+  EXPECT_FALSE(choice.tried_as_is);
+  EXPECT_FALSE(choice.as_is);
+}
+
+}  // namespace
+}  // namespace eqmesh
