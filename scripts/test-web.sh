@@ -81,5 +81,14 @@ json.dump(native, open(f"{work}/native.json", "w"))
 os.remove(f"{work}/native_level.ply")
 EOF
 
+# Streams coded as is in surface frames (ext_spec A.6.1): the WASM decoder must
+# give the native decoder's positions bit for bit.
+for target in 55 70; do
+  "$EQMESH" encode "$model" "$WORK/as_is_$target.eqm" --levels 0 --base-vertices 1000000 --psnr "$target" >/dev/null
+  "$EQMESH" decode "$WORK/as_is_$target.eqm" "$WORK/as_is_$target.obj" >/dev/null
+done
+node tests/web/frames_match_native.mjs "${WASM_BUILD_DIR:-build-wasm}" \
+  "$WORK/as_is_55.eqm:$WORK/as_is_55.obj" "$WORK/as_is_70.eqm:$WORK/as_is_70.obj"
+
 EQMESH_WEB_WORK="$WORK" node --test --test-reporter=spec tests/web/
 echo "test-web: screenshots $WORK/screenshot*.png; wall time $((SECONDS - started)) s"

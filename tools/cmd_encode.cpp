@@ -122,6 +122,7 @@ nlohmann::json ToJson(const EncodeArgs& a, const RemeshReport& remesh, const Enc
   j["header_bytes"] = r.header_bytes;
   j["base_bytes"] = r.base_bytes;
   j["base_coder"] = r.base_compact ? "compact" : "draco";
+  j["base_tangential_step"] = r.base_tangential_step;
   j["kept_bytes"] = r.kept_bytes;
   j["level_bytes"] = r.level_bytes;
   j["rate_evaluations"] = r.rate_evaluations;

@@ -228,6 +228,7 @@ Pass FinishPass(StreamHeader header, const Prepared& prep, const MeshChunkEncodi
   pass.report.lambda_code = static_cast<int>(header.lambda_code);
   pass.report.base_bits = base_report.depth;
   pass.report.base_compact = base.compact;
+  pass.report.base_tangential_step = base.tangential_quarters / 4.0;
   if (options.input_vertices > 0) {
     pass.report.bpv = 8.0 * static_cast<double>(pass.bytes.size()) /
                       static_cast<double>(options.input_vertices);

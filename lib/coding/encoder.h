@@ -86,6 +86,7 @@ struct EncodeReport {
   double tangential_factor = 1;  // as coded; --bpv may have moved it (EncodeOptions)
   double base_bits = 0;       // depth chosen for the base scaling values (quarter bits)
   bool base_compact = false;  // compact base chunk (else Draco)
+  double base_tangential_step = 1;  // compact chunk: tangential / normal step (> 1: surface frames)
   size_t header_bytes = 0;
   size_t base_bytes = 0;
   size_t kept_bytes = 0;
