@@ -1,8 +1,10 @@
 // Representation choice: see representation_choice.h.
 #include "coding/representation_choice.h"
 
+#include <cstdint>
 #include <utility>
 
+#include "coding/compact_base/compact_base_encoder.h"
 #include "remesh/remesh.h"
 
 namespace eqmesh {
@@ -40,12 +42,26 @@ bool AsIsIsBetter(const EncodeOptions& options, const EncodeReport& a, const Enc
   return b.psnr_db > a.psnr_db;
 }
 
-// Whether the as-is stream is worth encoding after the remeshed one.
+// Whether the remeshed stream's bits (`bytes`) leave room for an as-is stream of
+// the same size: its connectivity plus kAsIsMinPositionBits per vertex.
+bool AsIsCouldFit(const SemiRegularMesh& as_is, size_t bytes) {
+  const double vertices = static_cast<double>(as_is.positions.size());
+  Mesh surface;
+  surface.positions = as_is.positions;
+  surface.faces = as_is.hierarchy.BaseFaces();
+  const auto connectivity = CompactConnectivityBytes(surface);
+  // A mesh the compact chunk cannot hold goes to Draco: about 3 bits per vertex.
+  const double connectivity_bits = connectivity.ok() ? 8.0 * static_cast<double>(*connectivity) : 3.0 * vertices;
+  return 8.0 * static_cast<double>(bytes) >= connectivity_bits + kAsIsMinPositionBits * vertices;
+}
+
+// Whether the as-is stream is worth encoding after the remeshed one, before the
+// size test (AsIsCouldFit).
 bool WorthTrying(const EncodeOptions& options, const RepresentationOptions& representation,
                  const StatusOr<std::vector<uint8_t>>& stream, const EncodeReport& report) {
   if (!representation.allow_as_is || options.original == nullptr) return false;
   const bool out_of_reach = !stream.ok() && stream.status().code() == StatusCode::kTargetOutOfReach;
-  if (Targeted(options)) return out_of_reach || (stream.ok() && report.bpv >= kAsIsMinBpv);
+  if (Targeted(options)) return out_of_reach || stream.ok();
   return representation.floor_db > 0 && options.measure_psnr &&
          (out_of_reach || (stream.ok() && report.psnr_db < representation.floor_db));
 }
@@ -68,9 +84,15 @@ StatusOr<std::vector<uint8_t>> EncodeChoosingRepresentation(const SemiRegularMes
     c.remeshed_psnr_db = remeshed_report.psnr_db;
   }
   if (WorthTrying(options, representation, stream, remeshed_report)) {
-    c.tried_as_is = true;
     auto as_is_mesh = AsIsMesh(*options.original, representation.repair);
-    if (as_is_mesh.ok()) {
+    // With a bpv target the as-is stream gets the same bytes; with a PSNR target it
+    // must come in under the remeshed stream's; below a floor, size does not decide.
+    const double bpv_bytes = options.target_bpv * static_cast<double>(options.input_vertices) / 8.0;
+    const size_t budget = options.target_bpv > 0                    ? static_cast<size_t>(bpv_bytes)
+                          : options.target_psnr > 0 && stream.ok() ? stream->size()
+                                                                    : SIZE_MAX;
+    if (as_is_mesh.ok() && (!stream.ok() || AsIsCouldFit(*as_is_mesh, budget))) {
+      c.tried_as_is = true;
       EncodeReport as_is_report;
       LevelCountReport as_is_levels;
       auto as_is = EncodeChoosingLevels(*as_is_mesh, options, &as_is_report, &as_is_levels);

@@ -23,9 +23,11 @@
 
 namespace eqmesh {
 
-// An as-is stream costs at least its connectivity, about 2-3 bits per vertex: a
-// remeshed stream below this rate is not worth the comparison.
-inline constexpr double kAsIsMinBpv = 4.0;
+// An as-is stream costs its connectivity (2-3 bits per vertex, measured exactly by
+// a traversal) plus its positions, which need this many bits per vertex for any
+// useful quality (2 per coordinate, about 50 dB on a low-poly asset): a remeshed
+// stream that leaves less than that beside the connectivity is not compared.
+inline constexpr double kAsIsMinPositionBits = 6.0;
 
 // The input as a semi-regular mesh with no levels (base = input).
 StatusOr<SemiRegularMesh> AsIsMesh(const Mesh& input, bool repair);
@@ -50,9 +52,10 @@ struct RepresentationOptions {
 };
 
 // EncodeChoosingLevels(remeshed) and, where allowed, options.original set, and
-// either a bpv or PSNR target with the remeshed stream at or above kAsIsMinBpv (or
-// short of its target) or no target with the remeshed stream below the floor, the
-// input coded as is; returns the better (without a target: the higher PSNR).
+// either a bpv or PSNR target (the remeshed stream short of it, or its bytes
+// leaving room for the connectivity and kAsIsMinPositionBits per vertex) or no
+// target with the remeshed stream below the floor, the input coded as is; returns
+// the better (without a target: the higher PSNR).
 StatusOr<std::vector<uint8_t>> EncodeChoosingRepresentation(const SemiRegularMesh& remeshed,
                                                             const EncodeOptions& options,
                                                             const RepresentationOptions& representation,

@@ -67,6 +67,11 @@ class ChunkWriter {
     return Status::Ok();
   }
 
+  size_t ConnectivityBytes() const {
+    RangeEncoder enc = enc_;
+    return enc.Finish().size();
+  }
+
   // The chunk with positions on `coding` (the interleaved layout: grid_ as coded).
   StatusOr<CompactBaseEncoding> Finish(const CompactPositionCoding& coding) const {
     CompactBaseEncoding out;
@@ -246,6 +251,13 @@ StatusOr<CompactBaseEncoding> EncodeCompactBase(const Mesh& mesh, double depth, 
   ChunkWriter writer(mesh, layout, coding.grid);
   EQMESH_RETURN_IF_ERROR(writer.Run());
   return writer.Finish(coding);
+}
+
+StatusOr<size_t> CompactConnectivityBytes(const Mesh& mesh) {
+  EQMESH_RETURN_IF_ERROR(CheckCompactMesh(mesh));
+  ChunkWriter writer(mesh, CompactLayout::kPositionsAfter, CompactGrid());
+  EQMESH_RETURN_IF_ERROR(writer.Run());
+  return writer.ConnectivityBytes();
 }
 
 StatusOr<std::vector<CompactBaseEncoding>> EncodeCompactBaseVariants(const Mesh& mesh,

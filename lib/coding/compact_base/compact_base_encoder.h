@@ -37,6 +37,10 @@ struct CompactVariant {
 StatusOr<std::vector<CompactBaseEncoding>> EncodeCompactBaseVariants(const Mesh& mesh,
                                                                      const std::vector<CompactVariant>& variants);
 
+// Bytes of the positions-after chunk's connectivity alone: a lower bound on any
+// compact chunk of `mesh` (the positions come on top).
+StatusOr<size_t> CompactConnectivityBytes(const Mesh& mesh);
+
 StatusOr<CompactBaseEncoding> EncodeCompactBase(const Mesh& mesh, double depth,
                                                CompactLayout layout = CompactLayout::kPositionsAfter,
                                                int tangential_quarters = kGridTangentialQuarters);
