@@ -305,6 +305,12 @@ StatusOr<std::vector<MeshChunkEncoding>> EncodeCompactCandidates(const Mesh& bas
   EQMESH_ASSIGN_OR_RETURN(std::vector<CompactBaseEncoding> chunks, EncodeCompactBaseVariants(base, variants));
   std::vector<MeshChunkEncoding> out;
   for (size_t i = 0; i < chunks.size(); ++i) out.push_back(FromCompact(std::move(chunks[i]), variants[i]));
+  if (surface_frames) return out;  // a whole surface: thousands of vertices, frames only in this layout
+  for (const CompactVariant& v : variants) {
+    EQMESH_ASSIGN_OR_RETURN(CompactBaseEncoding c, EncodeCompactBase(base, v.depth, CompactLayout::kInterleaved));
+    out.push_back(FromCompact(std::move(c), v));
+    out.back().layout = CompactLayout::kInterleaved;
+  }
   return out;
 }
 

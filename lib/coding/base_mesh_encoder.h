@@ -34,6 +34,7 @@
 
 #include <Eigen/Core>
 
+#include "coding/compact_base/compact_base_model.h"
 #include "core/status.h"
 #include "mesh/mesh.h"
 
@@ -53,6 +54,7 @@ struct MeshChunkEncoding {
                                              // quarter bit; Draco: whole bits)
   bool compact = false;                      // a compact chunk (stream flag kCompactBase), else Draco
   int tangential_quarters = 4;               // compact: tangential step in quarter grid steps
+  CompactLayout layout = CompactLayout::kPositionsAfter;  // compact: its layout (a stream flag)
 };
 
 // One Draco encoding at a fixed depth, with the decoded result and (need_map) the
@@ -68,8 +70,10 @@ struct BaseRdReport {
 
 // Every depth of [kBaseMinBits, kBaseMaxBits], in order (independent of lambda, so
 // rate control computes them once): the compact chunk (compact_base/), in steps of
-// 1/kCompactDepthSteps bit, where the base is a manifold, consistently oriented mesh,
-// else Draco in whole bits.
+// 1/kCompactDepthSteps bit and in both layouts (the interleaved one is smaller on
+// bases of about 100 vertices, whose many position contexts of the other one have
+// too few samples to learn), where the base is a manifold, consistently oriented
+// mesh, else Draco in whole bits.
 // surface_frames (a base with no refinement levels, i.e. the decoded surface itself)
 // adds the compact chunk's surface-frame codings (kSurfaceTangentialQuarters) at
 // every depth.

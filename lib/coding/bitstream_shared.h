@@ -53,8 +53,8 @@ constexpr uint8_t kVersionMinor = 6;  // 1.1: coder 1 (zerotree); 1.2: kCompactB
 // A stream carries the lowest minor version that has every feature it uses, so an
 // optional feature leaves the streams without it byte-identical: 1.3 without an
 // atlas or a compact kept chunk, 1.4 with an atlas, 1.5 with a compact kept chunk,
-// 1.6 with compact chunks in the positions-after layout (every compact chunk an
-// encoder of this version writes; 1.3 only for streams whose chunks are all Draco).
+// 1.6 with compact chunks in the positions-after layout (the encoder picks the
+// layout per stream, with the base's depth: the older one wins on small bases).
 constexpr uint8_t kVersionMinorWithoutAtlas = 3;
 constexpr uint8_t kVersionMinorAtlas = 4;
 constexpr uint8_t kVersionMinorCompactKept = 5;

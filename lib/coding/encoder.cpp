@@ -43,8 +43,11 @@ struct Prepared {
   std::vector<Eigen::Matrix3d> base_quadrics;
   Mesh base;                       // level-0 values to code (input numbering)
   std::vector<MeshChunkEncoding> base_candidates;  // one per depth
-  std::vector<uint8_t> kept_bytes;
-  bool kept_compact = false;  // the kept chunk is compact (kCompactKept), else Draco
+  // The kept chunk: Draco, or compact (kCompactKept) in each layout, the stream's
+  // layout following its base's (KeptBytes).
+  std::vector<uint8_t> kept_bytes;              // Draco, or compact in the positions-after layout
+  std::vector<uint8_t> kept_bytes_interleaved;  // compact only
+  bool kept_compact = false;
 };
 
 // Step 2's result for one base order; passes at different lambdas usually share it.
@@ -148,6 +151,9 @@ StatusOr<Prepared> Prepare(const SemiRegularMesh& mesh, bitstream::TransformId t
     if (compact.ok()) {
       p.kept_bytes = std::move(compact->bytes);
       p.kept_compact = true;
+      EQMESH_ASSIGN_OR_RETURN(CompactBaseEncoding interleaved,
+                              EncodeCompactBase(mesh.kept_exactly, bitstream::kKeptBits, CompactLayout::kInterleaved));
+      p.kept_bytes_interleaved = std::move(interleaved.bytes);
     } else if (compact.status().code() == StatusCode::kUnsupportedFeature) {
       EQMESH_ASSIGN_OR_RETURN(MeshChunkEncoding kept,
                               EncodeMeshWithDraco(mesh.kept_exactly, bitstream::kKeptBits, false));
@@ -204,6 +210,20 @@ StreamHeader MakeHeader(const Prepared& prep, const EncodeOptions& options, int6
   return header;
 }
 
+// The layout of the stream's compact chunks: the base's where it is compact, else
+// the kept chunk's smaller one.
+CompactLayout StreamLayout(const Prepared& prep, const MeshChunkEncoding& base) {
+  if (base.compact) return base.layout;
+  return prep.kept_compact && prep.kept_bytes_interleaved.size() <= prep.kept_bytes.size()
+             ? CompactLayout::kInterleaved
+             : CompactLayout::kPositionsAfter;
+}
+
+const std::vector<uint8_t>& KeptBytes(const Prepared& prep, const MeshChunkEncoding& base) {
+  return prep.kept_compact && StreamLayout(prep, base) == CompactLayout::kInterleaved ? prep.kept_bytes_interleaved
+                                                                                       : prep.kept_bytes;
+}
+
 // The base candidate of least R + lambda D at the header's lambda.
 const MeshChunkEncoding& ChooseBase(const Prepared& prep, const StreamHeader& header, BaseRdReport* report) {
   const double quantum = static_cast<double>(header.quantum);
@@ -218,11 +238,11 @@ Pass FinishPass(StreamHeader header, const Prepared& prep, const MeshChunkEncodi
                 const EncodeOptions& options) {
   Pass pass;
   if (base.compact) header.flags |= bitstream::kCompactBase;
-  if (base.compact || prep.kept_compact) {
+  if ((base.compact || prep.kept_compact) && StreamLayout(prep, base) == CompactLayout::kPositionsAfter) {
     header.flags |= bitstream::kCompactPositionsAfter;
     header.version_minor = std::max(header.version_minor, bitstream::kVersionMinorPositionsAfter);
   }
-  pass.bytes = Assemble(header, base.bytes, prep.kept_bytes, chunks, &pass.report);
+  pass.bytes = Assemble(header, base.bytes, KeptBytes(prep, base), chunks, &pass.report);
   pass.report.lambda = header.lambda();
   pass.report.tangential_factor = header.tangential_factor();
   pass.report.lambda_code = static_cast<int>(header.lambda_code);
@@ -299,7 +319,7 @@ StatusOr<Pass> EncodeZerotreeAtCode(const Prepared& prep, const EncodeOptions& o
     zo.quantum = static_cast<double>(header.quantum);
     zo.tangential_factor = header.tangential_factor();
     if (total_budget > 0) {
-      zo.byte_budget = ZerotreePayloadBudget(header, base.bytes.size(), prep.kept_bytes.size(), total_budget);
+      zo.byte_budget = ZerotreePayloadBudget(header, base.bytes.size(), KeptBytes(prep, base).size(), total_budget);
     } else {
       zo.min_plane = ZerotreePlaneForLambda(header.lambda());
     }

@@ -51,7 +51,20 @@ EncodeOptions GoldenOptions() {
 }
 
 std::string GoldenPath() {
-  return std::string(EQMESH_SOURCE_DIR) + "/tests/codec/data/golden_v1_6.eqm";
+  return std::string(EQMESH_SOURCE_DIR) + "/tests/codec/data/golden_v1_5.eqm";
+}
+
+SemiRegularMesh MakeAsIsSphere() {
+  const SemiRegularMesh refined = MakeBumpySphere(3);
+  const Mesh finest = ExtractLevel(refined, 3);
+  SemiRegularMesh mesh;
+  mesh.hierarchy = SemiRegularHierarchy::Build(static_cast<uint32_t>(finest.positions.size()), finest.faces, 0).value();
+  mesh.positions = finest.positions;
+  return mesh;
+}
+
+std::string AsIsGoldenPath() {
+  return std::string(EQMESH_SOURCE_DIR) + "/tests/codec/data/golden_v1_6_as_is.eqm";
 }
 
 std::vector<uint8_t> ReadBytes(const std::string& path) {

@@ -21,6 +21,12 @@ SemiRegularMesh MakeBumpySphereWithKept(int levels);
 EncodeOptions GoldenOptions();
 std::string GoldenPath();
 
+// A mesh coded as is: no levels, its base a bumpy icosphere refined three times
+// (642 vertices), so the base chunk takes the positions-after layout with surface
+// frames; the as-is golden stream encodes it with GoldenOptions().
+SemiRegularMesh MakeAsIsSphere();
+std::string AsIsGoldenPath();
+
 std::vector<uint8_t> ReadBytes(const std::string& path);
 void WriteBytes(const std::string& path, const std::vector<uint8_t>& bytes);
 

@@ -130,9 +130,12 @@ TEST(RoundTrip, KeptPartsUseTheCompactChunkWhereTheyCan) {
     ASSERT_TRUE(info.ok());
     EXPECT_TRUE(info->has_kept_exactly);
     EXPECT_EQ(info->has_compact_kept, manifold);
-    // The compact base makes it 1.6 either way (positions-after layout).
-    EXPECT_EQ(info->version_minor, bitstream::kVersionMinorPositionsAfter);
-    EXPECT_TRUE(info->has_positions_after);
+    // The lowest version with the stream's features: 1.6 when its compact chunks are
+    // in the positions-after layout (the encoder's choice), else 1.5 with a compact
+    // kept chunk, else 1.3.
+    EXPECT_EQ(info->version_minor, info->has_positions_after ? bitstream::kVersionMinorPositionsAfter
+                                   : manifold                ? bitstream::kVersionMinorCompactKept
+                                                             : bitstream::kVersionMinorWithoutAtlas);
     auto decoded = DecodeSemiRegular(bytes->data(), bytes->size());
     ASSERT_TRUE(decoded.ok()) << decoded.status().ToString();
     ASSERT_EQ(decoded->kept_exactly.positions.size(), mesh.kept_exactly.positions.size());
@@ -218,6 +221,31 @@ TEST(RateControl, PsnrTargetIsMetAndTheReportedPsnrIsReproducible) {
   EXPECT_TRUE(smaller_report.psnr_db < 55.05 || smaller_report.total_bytes >= report.total_bytes)
       << smaller_report.psnr_db << " dB in " << smaller_report.total_bytes << " bytes against "
       << report.total_bytes;
+}
+
+// The as-is golden pins the positions-after layout and its surface frames (binary64
+// positions every decoder must reproduce): re-encoding must give its bytes, and it
+// decodes near the sphere with the input's own faces.
+TEST(Golden, AsIsStreamIsReproducedAndDecodes) {
+  const SemiRegularMesh mesh = testing::MakeAsIsSphere();
+  auto bytes = Encode(mesh, testing::GoldenOptions());
+  ASSERT_TRUE(bytes.ok()) << bytes.status().ToString();
+  if (std::getenv("EQMESH_REGENERATE_GOLDEN") != nullptr) testing::WriteBytes(testing::AsIsGoldenPath(), *bytes);
+  const std::vector<uint8_t> golden = testing::ReadBytes(testing::AsIsGoldenPath());
+  ASSERT_FALSE(golden.empty()) << "missing " << testing::AsIsGoldenPath();
+  EXPECT_EQ(golden, *bytes);
+  auto info = ReadStreamInfo(golden.data(), golden.size());
+  ASSERT_TRUE(info.ok());
+  EXPECT_EQ(info->version_minor, bitstream::kVersionMinorPositionsAfter);
+  EXPECT_TRUE(info->has_positions_after);
+  EXPECT_EQ(info->levels, 0);
+  // Chunk head: varint 642 (2 bytes), varint 1280 (2), bits (1), origin and step (16), then tq.
+  const uint8_t tq = golden[info->base_offset + 2 + 2 + 1 + 16];
+  EXPECT_GT(tq, 4) << "the base chunk codes in surface frames";
+  auto decoded = Decode(golden.data(), golden.size());
+  ASSERT_TRUE(decoded.ok()) << decoded.status().ToString();
+  EXPECT_EQ(decoded->faces.size(), mesh.hierarchy.BaseFaces().size());  // renumbered, not refined
+  EXPECT_LE(testing::MaxNearestDistance(decoded->positions, mesh.positions), 0.01 * testing::Diagonal(mesh.positions));
 }
 
 // The golden stream pins the format: re-encoding must reproduce it byte for byte,

@@ -21,12 +21,13 @@
 namespace eqmesh::testing {
 namespace {
 
-// Version 1.6: compact chunks in the positions-after layout (kCompactPositionsAfter).
-constexpr uint64_t kGoldenStreamHash = 0x3dc8a6bce69c9284ull;
+// Version 1.5: the kept tetrahedron in a compact chunk (kCompactKept); the encoder
+// picks the interleaved layout of the compact chunks for this small base.
+constexpr uint64_t kGoldenStreamHash = 0x940a7f7c474902feull;
 constexpr uint64_t kGoldenGeometryHash = 0x00dcd2c939480a35ull;
-// The version-1.5 golden (the kept tetrahedron in a compact chunk, kCompactKept; the
-// interleaved compact layout).
-constexpr uint64_t kV15GoldenGeometryHash = 0x00dcd2c939480a35ull;
+// Version 1.6: the as-is golden (positions-after layout, surface frames).
+constexpr uint64_t kAsIsGoldenStreamHash = 0x85ae9371eaec0705ull;
+constexpr uint64_t kAsIsGoldenGeometryHash = 0xeaa3b1a12c188349ull;
 // The version-1.3 golden (context-modelled tangential components, coding/eq/; a Draco
 // kept chunk).
 constexpr uint64_t kV13GoldenGeometryHash = 0x5d1bc8753fe82da1ull;
@@ -44,7 +45,7 @@ constexpr uint64_t kSingleLambdaGoldenGeometryHash = 0x71e7acd35de5e8d0ull;
 // Whole pipeline (remesh + encode) on the bundled sample. Re-pin only for an
 // intended change to the remesher's output or to the format, and say so in the
 // commit (git log -- this file lists them).
-constexpr uint64_t kBlobStreamHash = 0x5a317c25e4b5f6a1ull;
+constexpr uint64_t kBlobStreamHash = 0x81aa6b4566336412ull;
 
 // Positions (float32, as every consumer stores them) then indices.
 uint64_t GeometryHash(const Mesh& mesh) {
@@ -79,14 +80,18 @@ TEST(Determinism, GoldenStreamAndItsGeometryHaveThePinnedHashes) {
   auto mesh = Decode(golden.data(), golden.size());
   ASSERT_TRUE(mesh.ok()) << mesh.status().ToString();
   EXPECT_EQ(GeometryHash(*mesh), kGoldenGeometryHash) << Hex(GeometryHash(*mesh));
+  const std::vector<uint8_t> as_is = ReadFileOrEmpty(AsIsGoldenPath());
+  EXPECT_EQ(Fnv1a64(as_is), kAsIsGoldenStreamHash) << Hex(Fnv1a64(as_is));
+  auto as_is_mesh = Decode(as_is.data(), as_is.size());
+  ASSERT_TRUE(as_is_mesh.ok()) << as_is_mesh.status().ToString();
+  EXPECT_EQ(GeometryHash(*as_is_mesh), kAsIsGoldenGeometryHash) << Hex(GeometryHash(*as_is_mesh));
   const std::string data = std::string(EQMESH_SOURCE_DIR) + "/tests/codec/data/";
   const std::pair<const char*, uint64_t> earlier[] = {
       {"golden_v1_1_single_lambda.eqm", kSingleLambdaGoldenGeometryHash},
       {"golden_v1_1_full_base_weight.eqm", kFullBaseWeightGoldenGeometryHash},
       {"golden_v1_1.eqm", kV11GoldenGeometryHash},
       {"golden_v1_2.eqm", kV12GoldenGeometryHash},
-      {"golden_v1_3.eqm", kV13GoldenGeometryHash},
-      {"golden_v1_5.eqm", kV15GoldenGeometryHash}};
+      {"golden_v1_3.eqm", kV13GoldenGeometryHash}};
   for (const auto& [name, hash] : earlier) {
     const std::vector<uint8_t> old = ReadFileOrEmpty(data + name);
     auto old_mesh = Decode(old.data(), old.size());

@@ -34,7 +34,7 @@ TEST(StreamInfoCli, ReportAgreesWithTheDecoder) {
   WriteBytes(path, *stream, stream->size());
   const nlohmann::json j = InfoJson(path);
   ASSERT_FALSE(j.is_discarded());
-  EXPECT_EQ(j["version"], "1.6");  // compact chunks in the positions-after layout
+  EXPECT_EQ(j["version"], "1.5");  // the kept tetrahedron travels in a compact chunk
   EXPECT_TRUE(j["compact_kept"].get<bool>());
   EXPECT_EQ(j["coder"], "eq");
   EXPECT_TRUE(j["tangential_context"].get<bool>());
@@ -57,7 +57,7 @@ TEST(StreamInfoCli, ReportAgreesWithTheDecoder) {
   // The plain table says the same in words.
   const ToolRun table = RunTool("info " + path);
   EXPECT_EQ(table.exit_code, 0) << table.output;
-  EXPECT_NE(table.output.find("eqm stream 1.6"), std::string::npos) << table.output;
+  EXPECT_NE(table.output.find("eqm stream 1.5"), std::string::npos) << table.output;
 }
 
 TEST(StreamInfoCli, PrefixesAreReportedAndNonStreamsRefused) {
