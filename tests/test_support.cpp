@@ -87,4 +87,20 @@ Mesh MakeDisc(int rings, double radius) {
   return mesh;
 }
 
+Mesh WithComponent(Mesh a, const Mesh& b, const Vec3& shift) {
+  const uint32_t offset = static_cast<uint32_t>(a.positions.size());
+  for (const Vec3& p : b.positions) a.positions.push_back(p + shift);
+  for (const Face& f : b.faces) a.faces.push_back({f[0] + offset, f[1] + offset, f[2] + offset});
+  return a;
+}
+
+double LargestExtent(const Mesh& mesh) {
+  Vec3 lo = mesh.positions[0], hi = mesh.positions[0];
+  for (const Vec3& p : mesh.positions) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  return (hi - lo).maxCoeff();
+}
+
 }  // namespace eqmesh::testing

@@ -20,4 +20,9 @@ Mesh MakeTorus(int n, int m, double major_radius = 1.0, double minor_radius = 0.
 // Flat disc in the z = 0 plane with `rings` rings: a mesh with one boundary loop.
 Mesh MakeDisc(int rings, double radius = 1.0);
 
+// `a` with `b` moved by `shift` appended as a second component.
+Mesh WithComponent(Mesh a, const Mesh& b, const Vec3& shift);
+// The largest side of the mesh's bounding box.
+double LargestExtent(const Mesh& mesh);
+
 }  // namespace eqmesh::testing

@@ -33,21 +33,7 @@ FaceSet Canonical(const std::vector<Face>& faces, const std::vector<uint32_t>* m
 }
 
 Mesh TwoComponents() {
-  Mesh a = testing::MakeIcosphere(1);
-  Mesh b = testing::MakeTorus(8, 6);
-  const uint32_t offset = static_cast<uint32_t>(a.positions.size());
-  for (const Vec3& p : b.positions) a.positions.push_back(p + Vec3(3.0, 0.0, 0.0));
-  for (const Face& f : b.faces) a.faces.push_back({f[0] + offset, f[1] + offset, f[2] + offset});
-  return a;
-}
-
-double Extent(const Mesh& m) {
-  Vec3 lo = m.positions[0], hi = m.positions[0];
-  for (const Vec3& p : m.positions) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  return (hi - lo).maxCoeff();
+  return testing::WithComponent(testing::MakeIcosphere(1), testing::MakeTorus(8, 6), Vec3(3.0, 0.0, 0.0));
 }
 
 void ExpectRoundTrip(const Mesh& mesh, int bits, const std::string& name) {
@@ -60,10 +46,10 @@ void ExpectRoundTrip(const Mesh& mesh, int bits, const std::string& name) {
   EXPECT_EQ(dec->faces, enc->decoded.faces);
   EXPECT_EQ(dec->positions, enc->decoded.positions);  // bit for bit what the encoder assumed
   EXPECT_EQ(Canonical(dec->faces, &enc->decoded_to_input), Canonical(mesh.faces));
-  const double step = Extent(mesh) / (std::ldexp(1.0, bits) - 1.0);
+  const double step = testing::LargestExtent(mesh) / (std::ldexp(1.0, bits) - 1.0);
   for (size_t i = 0; i < dec->positions.size(); ++i) {
     const Vec3 d = dec->positions[i] - mesh.positions[enc->decoded_to_input[i]];
-    EXPECT_LE(d.cwiseAbs().maxCoeff(), 0.5 * step * (1 + 1e-6) + 1e-7 * Extent(mesh)) << "vertex " << i;
+    EXPECT_LE(d.cwiseAbs().maxCoeff(), 0.5 * step * (1 + 1e-6) + 1e-7 * testing::LargestExtent(mesh)) << "vertex " << i;
   }
 }
 

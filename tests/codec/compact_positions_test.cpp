@@ -25,21 +25,7 @@ Mesh BumpySphere(int subdivisions) {
 }
 
 Mesh SphereAndTorus() {
-  Mesh a = BumpySphere(2);
-  const Mesh b = testing::MakeTorus(12, 8);
-  const uint32_t offset = static_cast<uint32_t>(a.positions.size());
-  for (const Vec3& p : b.positions) a.positions.push_back(p + Vec3(3.0, 0.5, 0.0));
-  for (const Face& f : b.faces) a.faces.push_back({f[0] + offset, f[1] + offset, f[2] + offset});
-  return a;
-}
-
-double Extent(const Mesh& m) {
-  Vec3 lo = m.positions[0], hi = m.positions[0];
-  for (const Vec3& p : m.positions) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  return (hi - lo).maxCoeff();
+  return testing::WithComponent(BumpySphere(2), testing::MakeTorus(12, 8), Vec3(3.0, 0.5, 0.0));
 }
 
 struct Variant {
@@ -72,7 +58,7 @@ TEST(CompactPositions, DecoderRebuildsExactlyWhatTheEncoderReports) {
       }
       // Every decoded vertex is near the input vertex it came from: within half a
       // tangential step on each frame axis.
-      const double step = Extent(mesh) / (std::exp2(v.depth) - 1.0);
+      const double step = testing::LargestExtent(mesh) / (std::exp2(v.depth) - 1.0);
       const double bound = 0.5 * std::sqrt(3.0) * step * v.quarters / 4.0 * 1.0001;
       for (size_t i = 0; i < dec->positions.size(); ++i) {
         EXPECT_LE((dec->positions[i] - mesh.positions[enc->decoded_to_input[i]]).norm(), bound) << "vertex " << i;
@@ -117,7 +103,7 @@ double MaxRadialError(const Mesh& decoded) {
 TEST(CompactPositions, SurfaceFramesSpendFewerBitsOnASmoothSurfaceAndStayOnIt) {
   const Mesh sphere = testing::MakeIcosphere(4);
   const double depth = 10.0;
-  const double step = Extent(sphere) / (std::exp2(depth) - 1.0);
+  const double step = testing::LargestExtent(sphere) / (std::exp2(depth) - 1.0);
   auto grid = EncodeCompactBase(sphere, depth, CompactLayout::kPositionsAfter, 4);
   auto frames = EncodeCompactBase(sphere, depth, CompactLayout::kPositionsAfter, 16);
   ASSERT_TRUE(grid.ok() && frames.ok());

@@ -29,13 +29,11 @@ Mesh Gem() {
 }
 
 TEST(RepresentationChoice, AsIsMeshHoldsEveryComponentInItsBase) {
-  Mesh mesh = testing::MakeIcosphere(2);
-  const uint32_t offset = static_cast<uint32_t>(mesh.positions.size());
   // A small tetrahedron: a component the remesher sets aside (kept_exactly).
-  for (const Vec3& p : {Vec3(3, 0, 0), Vec3(3.1, 0, 0), Vec3(3, 0.1, 0), Vec3(3, 0, 0.1)}) mesh.positions.push_back(p);
-  for (const Face& f : std::vector<Face>{{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}}) {
-    mesh.faces.push_back({f[0] + offset, f[1] + offset, f[2] + offset});
-  }
+  Mesh tetrahedron;
+  tetrahedron.positions = {Vec3(0, 0, 0), Vec3(0.1, 0, 0), Vec3(0, 0.1, 0), Vec3(0, 0, 0.1)};
+  tetrahedron.faces = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  const Mesh mesh = testing::WithComponent(testing::MakeIcosphere(2), tetrahedron, Vec3(3, 0, 0));
   auto as_is = AsIsMesh(mesh, false);
   ASSERT_TRUE(as_is.ok()) << as_is.status().ToString();
   EXPECT_EQ(as_is->hierarchy.levels(), 0);

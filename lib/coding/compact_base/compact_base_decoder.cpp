@@ -124,8 +124,9 @@ class ChunkReader {
     while (dec_.ok() && state_.NextGate(&g)) {
       if (dec_.DecodeBit(&models_.has_face) == 0) continue;
       uint32_t d = 0;
+      const CompactGrid& grid = head_.coding.grid;
       const bool ok = dec_.DecodeBit(GateIsNewModel(&models_, layout_, state_, g)) != 0
-                          ? NewVertex(ParallelogramPrediction(head_.coding.grid, quanta_[g.a], quanta_[g.b], quanta_[g.c]),
+                          ? NewVertex(ParallelogramPrediction(grid, quanta_[g.a], quanta_[g.b], quanta_[g.c]),
                                       &models_.predicted, &d)
                           : ExistingCorner(g, &d);
       if (!ok || !AddFace(g.b, g.a, d)) return false;

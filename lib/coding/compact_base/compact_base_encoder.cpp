@@ -126,7 +126,9 @@ class ChunkWriter {
 
   bool Interleaved() const { return layout_ == CompactLayout::kInterleaved; }
   // The interleaved layout's prediction of a new vertex (none in the other layout).
-  std::array<int32_t, 3> SeedGuess() const { return Interleaved() ? SeedPrediction(grid_, quanta_) : std::array<int32_t, 3>{}; }
+  std::array<int32_t, 3> SeedGuess() const {
+    return Interleaved() ? SeedPrediction(grid_, quanta_) : std::array<int32_t, 3>{};
+  }
   std::array<int32_t, 3> GateGuess(const CompactGate& g) const {
     return Interleaved() ? ParallelogramPrediction(grid_, quanta_[g.a], quanta_[g.b], quanta_[g.c])
                          : std::array<int32_t, 3>{};
