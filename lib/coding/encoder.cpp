@@ -372,7 +372,8 @@ StatusOr<Pass> FinishQualitySearch(std::vector<Pass> passes, size_t chosen, cons
   for (Pass& pass : passes) {
     if (&pass != &passes[0] && pass.report.psnr_db < options.target_psnr + kSearchMarginDb) continue;
     EQMESH_ASSIGN_OR_RETURN(pass.report.psnr_db,
-                            MeasureStreamPsnr(pass.bytes, *options.original, 0, options.max_triangles));
+                            MeasureStreamPsnr(pass.bytes, *options.original, MeasureSamples(options, 0),
+                                              options.max_triangles));
     if (pass.report.psnr_db >= options.target_psnr) {
       best = &pass;
       break;
@@ -395,7 +396,8 @@ StatusOr<Pass> EncodeZerotreeForQuality(const Prepared& prep, const EncodeOption
   BudgetEvaluator eval = [&](uint64_t budget) -> StatusOr<BudgetPoint> {
     EQMESH_ASSIGN_OR_RETURN(Pass pass, EncodeZerotreeToBudget(prep, options, budget, cache));
     EQMESH_ASSIGN_OR_RETURN(pass.report.psnr_db,
-                            MeasureStreamPsnr(pass.bytes, *options.original, kSearchSamples, options.max_triangles));
+                            MeasureStreamPsnr(pass.bytes, *options.original, MeasureSamples(options, kSearchSamples),
+                                              options.max_triangles));
     const BudgetPoint point{budget, pass.bytes.size(), pass.report.psnr_db};
     passes.push_back(std::move(pass));
     return point;
@@ -466,7 +468,8 @@ RateEvaluator RecordingEvaluator(const Prepared& prep, const EncodeOptions& opti
     point.bpv = pass.report.bpv;
     if (measure) {
       EQMESH_ASSIGN_OR_RETURN(point.psnr_db,
-                              MeasureStreamPsnr(pass.bytes, *options.original, kSearchSamples, options.max_triangles));
+                              MeasureStreamPsnr(pass.bytes, *options.original, MeasureSamples(options, kSearchSamples),
+                                              options.max_triangles));
       pass.report.psnr_db = point.psnr_db;
     }
     passes->push_back(std::move(pass));
@@ -566,7 +569,8 @@ StatusOr<std::vector<uint8_t>> Encode(const SemiRegularMesh& mesh, const EncodeO
   }
   if (options.measure_psnr && !pass.report.psnr_measured) {
     EQMESH_ASSIGN_OR_RETURN(pass.report.psnr_db,
-                            MeasureStreamPsnr(pass.bytes, *options.original, 0, options.max_triangles));
+                            MeasureStreamPsnr(pass.bytes, *options.original, MeasureSamples(options, 0),
+                                              options.max_triangles));
     pass.report.psnr_measured = true;
   }
   ReportProgress(options.progress, "encode", 1.0);

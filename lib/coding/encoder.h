@@ -65,6 +65,10 @@ struct EncodeOptions {
   // targets and measurements are then of that decode (DecodeOptions::max_triangles),
   // so the rate-distortion choices are made for what a loader shows.
   uint64_t max_triangles = 0;
+  // Metro samples per direction for every PSNR the encoder measures (0: its
+  // defaults, 200k while searching lambda, 250k ranking level counts, the meter's own
+  // for the reported PSNR). Fewer samples measure faster and coarser: for tests.
+  uint64_t psnr_samples = 0;
   // Code the base with Draco (streams version 1.1 decoders read) instead of the
   // compact base chunk (format 1.2, compact_base/): it costs the bunny 0.5 dB at 0.25 bpv.
   bool draco_base = false;
@@ -79,6 +83,11 @@ struct EncodeOptions {
 // leaves outliers on the decoded surface (igea at 4 bpv: -6.5 dB); 2 gains up to 1.1 dB
 // over 1 there without them. Measured: bench/log/2026-12-05-codec-notebook.md.
 double DefaultTangentialFactor(bitstream::TransformId transform);
+
+// The samples a measurement takes: options.psnr_samples, else `fallback`.
+inline uint64_t MeasureSamples(const EncodeOptions& options, uint64_t fallback) {
+  return options.psnr_samples > 0 ? options.psnr_samples : fallback;
+}
 
 struct EncodeReport {
   double lambda = 0;          // as coded (after the log2 code)

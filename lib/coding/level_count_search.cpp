@@ -20,8 +20,9 @@ constexpr uint64_t kRankingSamples = 250'000;
 
 // PSNR of the uncoded mesh truncated to `levels`: no stream of that many levels
 // can do better, so a PSNR target above it need not be searched at all.
-StatusOr<double> CeilingPsnr(const SemiRegularMesh& mesh, int levels, const Mesh& original) {
-  return MeasureMeshPsnr(ExtractLevel(mesh, levels), original, kRankingSamples);
+StatusOr<double> CeilingPsnr(const SemiRegularMesh& mesh, int levels, const Mesh& original,
+                             uint64_t samples = kRankingSamples) {
+  return MeasureMeshPsnr(ExtractLevel(mesh, levels), original, samples);
 }
 
 // Coding only adds error to the truncated geometry; this margin covers the
@@ -48,7 +49,8 @@ StatusOr<Candidate> EncodeTruncated(const SemiRegularMesh& mesh, int levels, con
   EQMESH_ASSIGN_OR_RETURN(c.bytes, Encode(truncated, o, &c.report));
   if (!c.report.psnr_measured) {
     EQMESH_ASSIGN_OR_RETURN(c.report.psnr_db,
-                            MeasureStreamPsnr(c.bytes, *options.original, kRankingSamples, options.max_triangles));
+                            MeasureStreamPsnr(c.bytes, *options.original, MeasureSamples(options, kRankingSamples),
+                                              options.max_triangles));
     c.report.psnr_measured = true;
   }
   return c;
@@ -78,7 +80,8 @@ StatusOr<Candidate> ScanLevels(const SemiRegularMesh& mesh, const EncodeOptions&
       // the coarse counts would take most of a PSNR-target encode's time).
       // When every coarser count missed, the whole remesh is measured too: a
       // target above it fails at once instead of after a futile search.
-      EQMESH_ASSIGN_OR_RETURN(const double ceiling, CeilingPsnr(mesh, k, *options.original));
+      EQMESH_ASSIGN_OR_RETURN(const double ceiling, CeilingPsnr(mesh, k, *options.original,
+                                                                  MeasureSamples(options, kRankingSamples)));
       if (ceiling + kCeilingMarginDb < options.target_psnr) {
         out->trials.push_back({k, 0.0, ceiling, 0, false, false});
         if (k == top) return TargetOutOfReach(options.target_psnr, ceiling, "the remesh itself");
@@ -158,7 +161,8 @@ StatusOr<std::vector<uint8_t>> EncodeChoosingLevels(const SemiRegularMesh& mesh,
   }
   if (options.measure_psnr) {
     EQMESH_ASSIGN_OR_RETURN(chosen.report.psnr_db,
-                            MeasureStreamPsnr(chosen.bytes, *options.original, 0, options.max_triangles));
+                            MeasureStreamPsnr(chosen.bytes, *options.original, MeasureSamples(options, 0),
+                                              options.max_triangles));
   }
   if (report) *report = chosen.report;
   return std::move(chosen.bytes);

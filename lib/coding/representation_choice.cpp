@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <utility>
 
+#include "coding/bitstream_shared.h"
 #include "coding/compact_base/compact_base_encoder.h"
 #include "remesh/remesh.h"
 
@@ -32,19 +33,7 @@ StatusOr<SemiRegularMesh> AsIsMesh(const Mesh& input, bool repair) {
   return out;
 }
 
-namespace {
-
-bool Targeted(const EncodeOptions& options) { return options.target_psnr > 0 || options.target_bpv > 0; }
-
-// True when `b` (as is) should replace `a` (remeshed), both encoded.
-bool AsIsIsBetter(const EncodeOptions& options, const EncodeReport& a, const EncodeReport& b) {
-  if (options.target_psnr > 0) return b.total_bytes < a.total_bytes;
-  return b.psnr_db > a.psnr_db;
-}
-
-// Whether the remeshed stream's bits (`bytes`) leave room for an as-is stream of
-// the same size: its connectivity plus kAsIsMinPositionBits per vertex.
-bool AsIsCouldFit(const SemiRegularMesh& as_is, size_t bytes) {
+bool AsIsFitsIn(const SemiRegularMesh& as_is, size_t bytes) {
   const double vertices = static_cast<double>(as_is.positions.size());
   Mesh surface;
   surface.positions = as_is.positions;
@@ -55,11 +44,23 @@ bool AsIsCouldFit(const SemiRegularMesh& as_is, size_t bytes) {
   return 8.0 * static_cast<double>(bytes) >= connectivity_bits + kAsIsMinPositionBits * vertices;
 }
 
+namespace {
+
+bool Targeted(const EncodeOptions& options) { return options.target_psnr > 0 || options.target_bpv > 0; }
+
+// True when `b` (as is) should replace `a` (remeshed), both encoded.
+bool AsIsIsBetter(const EncodeOptions& options, const EncodeReport& a, const EncodeReport& b) {
+  if (options.target_psnr > 0) return b.total_bytes < a.total_bytes;
+  return b.psnr_db > a.psnr_db;
+}
+
 // Whether the as-is stream is worth encoding after the remeshed one, before the
-// size test (AsIsCouldFit).
+// size test (AsIsFitsIn).
 bool WorthTrying(const EncodeOptions& options, const RepresentationOptions& representation,
                  const StatusOr<std::vector<uint8_t>>& stream, const EncodeReport& report) {
   if (!representation.allow_as_is || options.original == nullptr) return false;
+  // A base chunk holds at most kMaxBaseVertices (ext_spec A.3).
+  if (options.original->positions.size() > bitstream::kMaxBaseVertices) return false;
   const bool out_of_reach = !stream.ok() && stream.status().code() == StatusCode::kTargetOutOfReach;
   if (Targeted(options)) return out_of_reach || stream.ok();
   return representation.floor_db > 0 && options.measure_psnr &&
@@ -91,7 +92,7 @@ StatusOr<std::vector<uint8_t>> EncodeChoosingRepresentation(const SemiRegularMes
     const size_t budget = options.target_bpv > 0                    ? static_cast<size_t>(bpv_bytes)
                           : options.target_psnr > 0 && stream.ok() ? stream->size()
                                                                     : SIZE_MAX;
-    if (as_is_mesh.ok() && (!stream.ok() || AsIsCouldFit(*as_is_mesh, budget))) {
+    if (as_is_mesh.ok() && (!stream.ok() || AsIsFitsIn(*as_is_mesh, budget))) {
       c.tried_as_is = true;
       EncodeReport as_is_report;
       LevelCountReport as_is_levels;

@@ -32,6 +32,11 @@ inline constexpr double kAsIsMinPositionBits = 6.0;
 // The input as a semi-regular mesh with no levels (base = input).
 StatusOr<SemiRegularMesh> AsIsMesh(const Mesh& input, bool repair);
 
+// Whether `bytes` leave room for an as-is stream of `as_is` (AsIsMesh): its
+// connectivity, measured by a traversal (about 3 bits per vertex where the compact
+// chunk cannot hold it), plus kAsIsMinPositionBits per vertex.
+bool AsIsFitsIn(const SemiRegularMesh& as_is, size_t bytes);
+
 struct RepresentationReport {
   bool tried_as_is = false;
   bool as_is = false;            // the stream returned codes the input as is

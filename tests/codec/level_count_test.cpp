@@ -65,6 +65,7 @@ TEST(LevelCount, PsnrTargetGivesTheSmallestStreamThatMeetsIt) {
   options.input_vertices = original.positions.size();
   options.original = &original;
   options.target_psnr = 50.0;
+  options.psnr_samples = 50'000;  // the search's logic, not the meter's precision, is under test
   EncodeReport report;
   LevelCountReport levels;
   auto bytes = EncodeChoosingLevels(mesh, options, &report, &levels);
