@@ -2,6 +2,7 @@
 #include "coding/representation_choice.h"
 
 #include <cstdint>
+#include <string>
 #include <utility>
 
 #include "coding/bitstream_shared.h"
@@ -48,6 +49,16 @@ namespace {
 
 bool Targeted(const EncodeOptions& options) { return options.target_psnr > 0 || options.target_bpv > 0; }
 
+bool OutOfReach(const Status& status) { return status.code() == StatusCode::kTargetOutOfReach; }
+
+// Both representations short of a PSNR target: one line naming what each reached.
+Status BothOutOfReach(const Status& remeshed, const Status& as_is) {
+  const std::string& m = as_is.message();
+  const size_t at = m.find("out of reach: ");
+  return Status(StatusCode::kTargetOutOfReach,
+                remeshed.message() + "; coded as is, " + (at == std::string::npos ? m : m.substr(at + 14)));
+}
+
 // True when `b` (as is) should replace `a` (remeshed), both encoded.
 bool AsIsIsBetter(const EncodeOptions& options, const EncodeReport& a, const EncodeReport& b) {
   if (options.target_psnr > 0) return b.total_bytes < a.total_bytes;
@@ -61,7 +72,7 @@ bool WorthTrying(const EncodeOptions& options, const RepresentationOptions& repr
   if (!representation.allow_as_is || options.original == nullptr) return false;
   // A base chunk holds at most kMaxBaseVertices (ext_spec A.3).
   if (options.original->positions.size() > bitstream::kMaxBaseVertices) return false;
-  const bool out_of_reach = !stream.ok() && stream.status().code() == StatusCode::kTargetOutOfReach;
+  const bool out_of_reach = !stream.ok() && OutOfReach(stream.status());
   if (Targeted(options)) return out_of_reach || stream.ok();
   return representation.floor_db > 0 && options.measure_psnr &&
          (out_of_reach || (stream.ok() && report.psnr_db < representation.floor_db));
@@ -106,6 +117,9 @@ StatusOr<std::vector<uint8_t>> EncodeChoosingRepresentation(const SemiRegularMes
         if (report) *report = as_is_report;
         if (levels) *levels = std::move(as_is_levels);
         return as_is;
+      }
+      if (!stream.ok() && OutOfReach(stream.status()) && !as_is.ok() && OutOfReach(as_is.status())) {
+        return BothOutOfReach(stream.status(), as_is.status());
       }
     }
   }

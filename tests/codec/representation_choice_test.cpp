@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 #include "codec_fixtures.h"
 #include "coding/decoder.h"
@@ -84,6 +85,28 @@ TEST(RepresentationChoice, LowPolyMeshTravelsAsIsAndMeetsItsTarget) {
   }
   EXPECT_FALSE(kept.tried_as_is);
   EXPECT_FALSE(kept.as_is);
+}
+
+TEST(RepresentationChoice, ATargetNeitherReachesNamesTheBestOfEach) {
+  const Mesh gem = Gem();
+  RemeshOptions remesh;
+  remesh.levels = 1;
+  RemeshReport remesh_report;
+  auto remeshed = Remesh(gem, remesh, &remesh_report);
+  ASSERT_TRUE(remeshed.ok()) << remeshed.status().ToString();
+  EncodeOptions options;
+  options.original = &gem;
+  options.input_vertices = gem.positions.size();
+  options.target_psnr = 250.0;
+  options.psnr_samples = 20'000;
+  RepresentationOptions allowed;
+  allowed.allow_as_is = true;
+  auto stream = EncodeChoosingRepresentation(*remeshed, options, allowed, nullptr, nullptr, nullptr);
+  ASSERT_FALSE(stream.ok());
+  EXPECT_EQ(stream.status().code(), StatusCode::kTargetOutOfReach);
+  const std::string& m = stream.status().message();
+  EXPECT_NE(m.find("out of reach"), std::string::npos) << m;
+  EXPECT_NE(m.find("; coded as is, "), std::string::npos) << m;
 }
 
 TEST(RepresentationChoice, AsIsIsOnlyTriedWhereItsConnectivityAndPositionsFit) {
