@@ -9,6 +9,7 @@
 #include <set>
 #include <string>
 
+#include "codec/compact_chunk_checks.h"
 #include "coding/compact_base/compact_base_decoder.h"
 #include "coding/compact_base/compact_base_encoder.h"
 #include "coding/compact_base/compact_base_model.h"
@@ -87,27 +88,13 @@ TEST(CompactBase, RefusesWhatItDoesNotCode) {
   EXPECT_FALSE(EncodeCompactBase(loose, kCompactMaxBits + 1).ok());
 }
 
-void ExpectValidOrError(const std::vector<uint8_t>& bytes, uint32_t max_vertices) {
-  auto dec = DecodeCompactBase(bytes.data(), bytes.size(), max_vertices, "test");
-  if (!dec.ok()) {
-    EXPECT_TRUE(dec.status().code() == StatusCode::kCorruptStream ||
-                dec.status().code() == StatusCode::kResourceLimit)
-        << dec.status().ToString();
-    return;
-  }
-  for (const Face& f : dec->faces) {
-    for (const uint32_t v : f) EXPECT_LT(v, dec->positions.size());
-  }
-  for (const Vec3& p : dec->positions) EXPECT_TRUE(p.allFinite());
-}
-
 TEST(CompactBase, EveryPrefixAndCorruptedByteIsAnErrorOrAValidMesh) {
   auto enc = EncodeCompactBase(TwoComponents(), 10);
   ASSERT_TRUE(enc.ok());
   const std::vector<uint8_t>& good = enc->bytes;
   for (size_t n = 0; n < good.size(); ++n) {
     const std::vector<uint8_t> prefix(good.begin(), good.begin() + static_cast<std::ptrdiff_t>(n));
-    ExpectValidOrError(prefix, 1u << 20);
+    testing::ExpectErrorOrValidCompactMesh(prefix, 1u << 20);
   }
   uint32_t state = 12345;
   for (size_t at = 0; at < good.size(); ++at) {
@@ -115,7 +102,7 @@ TEST(CompactBase, EveryPrefixAndCorruptedByteIsAnErrorOrAValidMesh) {
       std::vector<uint8_t> bad = good;
       state = state * 1664525u + 1013904223u;
       bad[at] = static_cast<uint8_t>(bad[at] ^ (1u + (state >> 24) % 255u));
-      ExpectValidOrError(bad, 1u << 20);
+      testing::ExpectErrorOrValidCompactMesh(bad, 1u << 20);
     }
   }
 }
@@ -154,7 +141,7 @@ TEST(CompactBase, HostileCountsAreRefusedBeforeAllocation) {
             StatusCode::kCorruptStream);
   // Counts within the rules but payload noise: an error, never a hang.
   const std::vector<uint8_t> noise = ChunkClaiming(1000, 2000, 64);
-  ExpectValidOrError(noise, 1u << 20);
+  testing::ExpectErrorOrValidCompactMesh(noise, 1u << 20);
 }
 
 }  // namespace

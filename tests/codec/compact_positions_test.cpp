@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "codec/compact_chunk_checks.h"
 #include "coding/compact_base/compact_base_decoder.h"
 #include "coding/compact_base/compact_base_encoder.h"
 #include "coding/compact_base/compact_positions.h"
@@ -114,33 +115,20 @@ TEST(CompactPositions, SurfaceFramesSpendFewerBitsOnASmoothSurfaceAndStayOnIt) {
   EXPECT_LE(MaxRadialError(frames->decoded), 1.5 * step);
 }
 
-void ExpectErrorOrFiniteMesh(const std::vector<uint8_t>& bytes) {
-  auto dec = DecodeCompactBase(bytes.data(), bytes.size(), 1u << 20, "test");
-  if (!dec.ok()) {
-    EXPECT_TRUE(dec.status().code() == StatusCode::kCorruptStream ||
-                dec.status().code() == StatusCode::kResourceLimit)
-        << dec.status().ToString();
-    return;
-  }
-  for (const Face& f : dec->faces) {
-    for (const uint32_t v : f) EXPECT_LT(v, dec->positions.size());
-  }
-  for (const Vec3& p : dec->positions) ASSERT_TRUE(p.allFinite());
-}
-
 TEST(CompactPositions, DamagedFrameChunksAreErrorsOrFiniteMeshes) {
   auto enc = EncodeCompactBase(SphereAndTorus(), 10, CompactLayout::kPositionsAfter, 12);
   ASSERT_TRUE(enc.ok());
   const std::vector<uint8_t>& good = enc->bytes;
   for (size_t n = 0; n < good.size(); n += 3) {
-    ExpectErrorOrFiniteMesh(std::vector<uint8_t>(good.begin(), good.begin() + static_cast<std::ptrdiff_t>(n)));
+    testing::ExpectErrorOrValidCompactMesh(
+        std::vector<uint8_t>(good.begin(), good.begin() + static_cast<std::ptrdiff_t>(n)), 1u << 20);
   }
   uint32_t state = 777;
   for (size_t at = 0; at < good.size(); ++at) {
     std::vector<uint8_t> bad = good;
     state = state * 1664525u + 1013904223u;
     bad[at] = static_cast<uint8_t>(bad[at] ^ (1u + (state >> 24) % 255u));
-    ExpectErrorOrFiniteMesh(bad);
+    testing::ExpectErrorOrValidCompactMesh(bad, 1u << 20);
   }
 }
 

@@ -29,6 +29,28 @@ Mesh Gem() {
   return m;
 }
 
+// The gem's normal mesh with one level: a short level search, since the tests are
+// about the choice, not the remesh.
+SemiRegularMesh OneLevelRemesh(const Mesh& gem) {
+  RemeshOptions remesh;
+  remesh.levels = 1;
+  RemeshReport report;
+  auto remeshed = Remesh(gem, remesh, &report);
+  EXPECT_TRUE(remeshed.ok()) << remeshed.status().ToString();
+  return remeshed.ok() ? *std::move(remeshed) : SemiRegularMesh();
+}
+
+// A PSNR target on `gem`, measured at 20k samples: the choice, not the meter's
+// precision, is under test.
+EncodeOptions PsnrTarget(const Mesh& gem, double psnr) {
+  EncodeOptions options;
+  options.original = &gem;
+  options.input_vertices = gem.positions.size();
+  options.target_psnr = psnr;
+  options.psnr_samples = 20'000;
+  return options;
+}
+
 TEST(RepresentationChoice, AsIsMeshHoldsEveryComponentInItsBase) {
   // A small tetrahedron: a component the remesher sets aside (kept_exactly).
   Mesh tetrahedron;
@@ -45,21 +67,14 @@ TEST(RepresentationChoice, AsIsMeshHoldsEveryComponentInItsBase) {
 
 TEST(RepresentationChoice, LowPolyMeshTravelsAsIsAndMeetsItsTarget) {
   const Mesh gem = Gem();
-  RemeshReport remesh_report;
-  RemeshOptions remesh;
-  remesh.levels = 1;  // a short level search: the test is about the choice
-  auto remeshed = Remesh(gem, remesh, &remesh_report);
-  ASSERT_TRUE(remeshed.ok()) << remeshed.status().ToString();
-  EncodeOptions options;
-  options.original = &gem;
-  options.input_vertices = gem.positions.size();
-  options.target_psnr = 55.0;
-  options.psnr_samples = 20'000;  // the choice, not the meter's precision, is under test
+  const SemiRegularMesh normal_mesh = OneLevelRemesh(gem);
+  ASSERT_FALSE(normal_mesh.positions.empty());
+  const EncodeOptions options = PsnrTarget(gem, 55.0);
   EncodeReport report;
   RepresentationReport choice;
   RepresentationOptions allowed;
   allowed.allow_as_is = true;
-  auto stream = EncodeChoosingRepresentation(*remeshed, options, allowed, &report, nullptr, &choice);
+  auto stream = EncodeChoosingRepresentation(normal_mesh, options, allowed, &report, nullptr, &choice);
   ASSERT_TRUE(stream.ok()) << stream.status().ToString();
   ASSERT_TRUE(choice.tried_as_is);
   EXPECT_TRUE(choice.as_is);
@@ -78,7 +93,7 @@ TEST(RepresentationChoice, LowPolyMeshTravelsAsIsAndMeetsItsTarget) {
   EXPECT_DOUBLE_EQ(distance->psnr_db, report.psnr_db);
   // Not allowed (an explicit level count, say): the normal mesh is kept.
   RepresentationReport kept;
-  auto normal = EncodeChoosingRepresentation(*remeshed, options, RepresentationOptions{}, nullptr, nullptr, &kept);
+  auto normal = EncodeChoosingRepresentation(normal_mesh, options, RepresentationOptions{}, nullptr, nullptr, &kept);
   // The one-level normal mesh of this gem may not reach 55 dB at all.
   if (!normal.ok()) {
     EXPECT_EQ(normal.status().code(), StatusCode::kTargetOutOfReach);
@@ -89,19 +104,12 @@ TEST(RepresentationChoice, LowPolyMeshTravelsAsIsAndMeetsItsTarget) {
 
 TEST(RepresentationChoice, ATargetNeitherReachesNamesTheBestOfEach) {
   const Mesh gem = Gem();
-  RemeshOptions remesh;
-  remesh.levels = 1;
-  RemeshReport remesh_report;
-  auto remeshed = Remesh(gem, remesh, &remesh_report);
-  ASSERT_TRUE(remeshed.ok()) << remeshed.status().ToString();
-  EncodeOptions options;
-  options.original = &gem;
-  options.input_vertices = gem.positions.size();
-  options.target_psnr = 250.0;
-  options.psnr_samples = 20'000;
+  const SemiRegularMesh normal_mesh = OneLevelRemesh(gem);
+  ASSERT_FALSE(normal_mesh.positions.empty());
+  const EncodeOptions options = PsnrTarget(gem, 250.0);
   RepresentationOptions allowed;
   allowed.allow_as_is = true;
-  auto stream = EncodeChoosingRepresentation(*remeshed, options, allowed, nullptr, nullptr, nullptr);
+  auto stream = EncodeChoosingRepresentation(normal_mesh, options, allowed, nullptr, nullptr, nullptr);
   ASSERT_FALSE(stream.ok());
   EXPECT_EQ(stream.status().code(), StatusCode::kTargetOutOfReach);
   const std::string& m = stream.status().message();
