@@ -27,7 +27,7 @@ int RunRemesh(int argc, char** argv) {
   CLI::App app{"Remesh a manifold triangle mesh into a semi-regular normal mesh", argv[0]};
   std::string in_path, out_path;
   int levels = -1, base_vertices = -1;
-  double min_psnr = 0.0;
+  double min_psnr = eqmesh::kRemeshQualityFloorDb;
   bool repair = false, json = false;
   int threads = 0;
   app.add_option("IN", in_path, "input mesh (.obj .ply .off .gltf .glb, optionally .gz)")->required();
@@ -45,7 +45,8 @@ int RunRemesh(int argc, char** argv) {
       ->check(CLI::Range(-1, 1 << 30));
   app.add_option("--min-psnr", min_psnr,
                  "with the automatic base: when the remesh measures below this many dB against the input "
-                 "(by at most 10 dB), redo it with a base twice as fine (at most twice; 0: no floor)")
+                 "(by at most 20 dB), redo it with a base twice as fine, up to four times, keeping the best "
+                 "(default 80; 0: no floor, nothing measured)")
       ->check(CLI::Range(0.0, 300.0));
   app.add_flag("--repair", repair, "repair non-manifold / misoriented input instead of refusing it");
   app.add_flag("--json", json, "print one JSON object with the remesh report");
@@ -73,6 +74,13 @@ int RunRemesh(int argc, char** argv) {
   auto remeshed = eqmesh::Remesh(*mesh, options, &report);
   eqmesh::cli::ClearTerminalProgress(options.progress);
   if (!remeshed.ok()) return eqmesh::cli::Fail(kName, in_path + ": " + remeshed.status().message());
+  if (report.psnr_db > 0 && report.psnr_db < options.min_psnr) {
+    // Still written: the best remesh found is worth having, but not silently.
+    std::fprintf(stderr,
+                 "eqmesh remesh: warning: the remesh measures %.2f dB against the input, below the %.0f dB floor "
+                 "even with the base bound at %.3g %% (try --base-vertices)\n",
+                 report.psnr_db, options.min_psnr, 100.0 * report.base_error_share);
+  }
   const eqmesh::Mesh finest = eqmesh::ExtractLevel(*remeshed, remeshed->hierarchy.levels());
   const eqmesh::Status written = eqmesh::cli::EndsWith(out_path, ".srm")
                                       ? eqmesh::WriteSemiRegular(*remeshed, out_path)

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "mesh_io/mesh_io.h"
+#include "remesh/hard_shapes.h"
 #include "test_support.h"
 #include "tools/tool_runner.h"
 
@@ -93,6 +94,34 @@ TEST(ReportsCli, UnreachablePsnrTargetFailsNamingTheBestAndWritesNothing) {
   EXPECT_NE(g.exit_code, 0) << g.output;
   EXPECT_NE(g.output.find("below the 200.00 dB floor"), std::string::npos) << g.output;
   EXPECT_FALSE(FileExists(glb));
+}
+
+// `eqmesh remesh` holds its output to 80 dB by default: a spiky star whose
+// 2 % base loses the spike tips is remeshed again on a finer base. A floor out
+// of any base's reach still writes the best remesh, with a warning naming it.
+TEST(ReportsCli, RemeshHoldsItsDefaultFloorAndWarnsWhereItCannot) {
+  const ScratchDir dir("reports_remesh_floor");
+  const std::string in = dir.Path("star.obj");
+  ASSERT_TRUE(WriteMesh(MakeSpikyStar(), in).ok());
+  const std::string out = dir.Path("star.ply");
+  const nlohmann::json plain = Json(RunTool("remesh " + in + " " + out + " --levels 4 --min-psnr 0 --json"));
+  // A warning may come first (should the floor be missed); the report is the last line.
+  ToolRun held_run = RunTool("remesh " + in + " " + out + " --levels 4 --json");
+  held_run.output.erase(0, held_run.output.rfind('{', held_run.output.find("\"input\"")));
+  const nlohmann::json held = Json(held_run);
+  ASSERT_FALSE(plain.is_discarded());
+  ASSERT_FALSE(held.is_discarded());
+  EXPECT_EQ(plain["base_error_share"].get<double>(), 0.02);
+  ASSERT_LT(plain["psnr_db"].get<double>(), 80.0) << "the star no longer tests the floor";
+  EXPECT_LT(held["base_error_share"].get<double>(), 0.02);
+  EXPECT_GT(held["base_vertices"].get<size_t>(), plain["base_vertices"].get<size_t>());
+  EXPECT_GT(held["psnr_db"].get<double>(), plain["psnr_db"].get<double>());
+  const std::string unreachable = dir.Path("unreachable.ply");
+  const ToolRun r = RunTool("remesh " + in + " " + unreachable + " --levels 2 --min-psnr 200");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("warning: the remesh measures"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("below the 200 dB floor"), std::string::npos) << r.output;
+  EXPECT_TRUE(FileExists(unreachable));
 }
 
 TEST(ReportsCli, BrokenGlbGetsOneMessageFromEveryCommand) {
