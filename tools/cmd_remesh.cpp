@@ -113,7 +113,8 @@ int RunRemesh(int argc, char** argv) {
   j["stage_seconds"] = {{"prepare", report.stage_seconds.prepare},
                         {"base_domain", report.stage_seconds.base_domain},
                         {"refine", report.stage_seconds.refine},
-                        {"untangle", report.stage_seconds.untangle}};
+                        {"untangle", report.stage_seconds.untangle},
+                        {"measure", report.stage_seconds.measure}};
   // Original first: its bounding-box diagonal is the PSNR peak.
   auto cmp = eqmesh::CompareSurfaces(*mesh, finest, eqmesh::CompareOptions());
   if (cmp.ok()) {

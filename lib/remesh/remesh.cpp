@@ -359,7 +359,10 @@ StatusOr<Refinement> RemeshMeetingFloor(const SurfaceContext& c, RemeshReport* r
       report->base_error_share = c.options.base_vertices > 0 ? 0.0 : share;
       return r;
     }
+    const auto measuring = std::chrono::steady_clock::now();
     const double psnr = MeasureLevelPsnr(c.prep.surface, r.positions, r.hierarchy.Faces(r.levels));
+    report->stage_seconds.measure +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - measuring).count();
     if (attempt == 0 || psnr > report->psnr_db) {
       best = std::move(r);
       report->psnr_db = psnr;

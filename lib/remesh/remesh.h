@@ -71,6 +71,7 @@ struct RemeshReport {
     double base_domain = 0.0;  // simplification and parameterization
     double refine = 0.0;       // piercing of every level
     double untangle = 0.0;
+    double measure = 0.0;      // the floor's PSNR measurements (RemeshOptions::min_psnr)
   } stage_seconds;
   std::vector<std::string> notes;
 };
