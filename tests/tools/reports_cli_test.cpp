@@ -96,26 +96,29 @@ TEST(ReportsCli, UnreachablePsnrTargetFailsNamingTheBestAndWritesNothing) {
   EXPECT_FALSE(FileExists(glb));
 }
 
+// Base vertex count from `eqmesh remesh`'s one-line report ("... -> base N, ..."),
+// 0 when absent. (Without --json: that report measures with 1M+ samples.)
+size_t ReportedBaseVertices(const ToolRun& r) {
+  const size_t at = r.output.find("-> base ");
+  return at == std::string::npos ? 0 : std::stoul(r.output.substr(at + 8));
+}
+
 // `eqmesh remesh` holds its output to 80 dB by default: a spiky star whose
-// 2 % base loses the spike tips is remeshed again on a finer base. A floor out
-// of any base's reach still writes the best remesh, with a warning naming it.
+// 2 % base loses the spike tips (76.6 dB at 4 levels) is remeshed again on a
+// finer base. A floor out of any base's reach still writes the best remesh,
+// with a warning naming it. (The floor's mechanism itself: stage_test.cpp.)
 TEST(ReportsCli, RemeshHoldsItsDefaultFloorAndWarnsWhereItCannot) {
   const ScratchDir dir("reports_remesh_floor");
   const std::string in = dir.Path("star.obj");
   ASSERT_TRUE(WriteMesh(MakeSpikyStar(), in).ok());
   const std::string out = dir.Path("star.ply");
-  const nlohmann::json plain = Json(RunTool("remesh " + in + " " + out + " --levels 4 --min-psnr 0 --json"));
-  // A warning may come first (should the floor be missed); the report is the last line.
-  ToolRun held_run = RunTool("remesh " + in + " " + out + " --levels 4 --json");
-  held_run.output.erase(0, held_run.output.rfind('{', held_run.output.find("\"input\"")));
-  const nlohmann::json held = Json(held_run);
-  ASSERT_FALSE(plain.is_discarded());
-  ASSERT_FALSE(held.is_discarded());
-  EXPECT_EQ(plain["base_error_share"].get<double>(), 0.02);
-  ASSERT_LT(plain["psnr_db"].get<double>(), 80.0) << "the star no longer tests the floor";
-  EXPECT_LT(held["base_error_share"].get<double>(), 0.02);
-  EXPECT_GT(held["base_vertices"].get<size_t>(), plain["base_vertices"].get<size_t>());
-  EXPECT_GT(held["psnr_db"].get<double>(), plain["psnr_db"].get<double>());
+  const ToolRun plain = RunTool("remesh " + in + " " + out + " --levels 4 --min-psnr 0");
+  ASSERT_EQ(plain.exit_code, 0) << plain.output;
+  const ToolRun held = RunTool("remesh " + in + " " + out + " --levels 4");
+  ASSERT_EQ(held.exit_code, 0) << held.output;
+  EXPECT_EQ(held.output.find("warning"), std::string::npos) << held.output;
+  ASSERT_GT(ReportedBaseVertices(plain), 0u) << plain.output;
+  EXPECT_GT(ReportedBaseVertices(held), ReportedBaseVertices(plain)) << plain.output << held.output;
   const std::string unreachable = dir.Path("unreachable.ply");
   const ToolRun r = RunTool("remesh " + in + " " + unreachable + " --levels 2 --min-psnr 200");
   EXPECT_EQ(r.exit_code, 0) << r.output;
