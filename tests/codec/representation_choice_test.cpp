@@ -115,6 +115,7 @@ TEST(RepresentationChoice, ATargetNeitherReachesNamesTheBestOfEach) {
   const std::string& m = stream.status().message();
   EXPECT_NE(m.find("out of reach"), std::string::npos) << m;
   EXPECT_NE(m.find("; coded as is, "), std::string::npos) << m;
+  EXPECT_EQ(m.find("coded as is, the remesh"), std::string::npos) << m;  // the as-is side has no remesh
 }
 
 TEST(RepresentationChoice, AsIsIsOnlyTriedWhereItsConnectivityAndPositionsFit) {
