@@ -371,9 +371,7 @@ StatusOr<Pass> FinishQualitySearch(std::vector<Pass> passes, size_t chosen, cons
   Pass* best = nullptr;
   for (Pass& pass : passes) {
     if (&pass != &passes[0] && pass.report.psnr_db < options.target_psnr + kSearchMarginDb) continue;
-    EQMESH_ASSIGN_OR_RETURN(pass.report.psnr_db,
-                            MeasureStreamPsnr(pass.bytes, *options.original, MeasureSamples(options, 0),
-                                              options.max_triangles));
+    EQMESH_ASSIGN_OR_RETURN(pass.report.psnr_db, MeasureEncodedPsnr(pass.bytes, options, 0));
     if (pass.report.psnr_db >= options.target_psnr) {
       best = &pass;
       break;
@@ -395,9 +393,7 @@ StatusOr<Pass> EncodeZerotreeForQuality(const Prepared& prep, const EncodeOption
   std::vector<Pass> passes;
   BudgetEvaluator eval = [&](uint64_t budget) -> StatusOr<BudgetPoint> {
     EQMESH_ASSIGN_OR_RETURN(Pass pass, EncodeZerotreeToBudget(prep, options, budget, cache));
-    EQMESH_ASSIGN_OR_RETURN(pass.report.psnr_db,
-                            MeasureStreamPsnr(pass.bytes, *options.original, MeasureSamples(options, kSearchSamples),
-                                              options.max_triangles));
+    EQMESH_ASSIGN_OR_RETURN(pass.report.psnr_db, MeasureEncodedPsnr(pass.bytes, options, kSearchSamples));
     const BudgetPoint point{budget, pass.bytes.size(), pass.report.psnr_db};
     passes.push_back(std::move(pass));
     return point;
@@ -467,9 +463,7 @@ RateEvaluator RecordingEvaluator(const Prepared& prep, const EncodeOptions& opti
     point.lambda_code = code;
     point.bpv = pass.report.bpv;
     if (measure) {
-      EQMESH_ASSIGN_OR_RETURN(point.psnr_db,
-                              MeasureStreamPsnr(pass.bytes, *options.original, MeasureSamples(options, kSearchSamples),
-                                              options.max_triangles));
+      EQMESH_ASSIGN_OR_RETURN(point.psnr_db, MeasureEncodedPsnr(pass.bytes, options, kSearchSamples));
       pass.report.psnr_db = point.psnr_db;
     }
     passes->push_back(std::move(pass));
@@ -543,6 +537,11 @@ double DefaultTangentialFactor(bitstream::TransformId transform) {
   return transform == bitstream::TransformId::kLifted ? 4.0 : 2.0;
 }
 
+StatusOr<double> MeasureEncodedPsnr(const std::vector<uint8_t>& stream, const EncodeOptions& options,
+                                    uint64_t fallback) {
+  return MeasureStreamPsnr(stream, *options.original, MeasureSamples(options, fallback), options.max_triangles);
+}
+
 StatusOr<std::vector<uint8_t>> Encode(const SemiRegularMesh& mesh, const EncodeOptions& requested,
                                       EncodeReport* report) {
   EncodeOptions options = requested;
@@ -568,9 +567,7 @@ StatusOr<std::vector<uint8_t>> Encode(const SemiRegularMesh& mesh, const EncodeO
     pass.report.rate_evaluations = 1;
   }
   if (options.measure_psnr && !pass.report.psnr_measured) {
-    EQMESH_ASSIGN_OR_RETURN(pass.report.psnr_db,
-                            MeasureStreamPsnr(pass.bytes, *options.original, MeasureSamples(options, 0),
-                                              options.max_triangles));
+    EQMESH_ASSIGN_OR_RETURN(pass.report.psnr_db, MeasureEncodedPsnr(pass.bytes, options, 0));
     pass.report.psnr_measured = true;
   }
   ReportProgress(options.progress, "encode", 1.0);

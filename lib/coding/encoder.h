@@ -89,6 +89,12 @@ inline uint64_t MeasureSamples(const EncodeOptions& options, uint64_t fallback) 
   return options.psnr_samples > 0 ? options.psnr_samples : fallback;
 }
 
+// The decoded `stream`'s PSNR against *options.original, as every measurement of
+// the encoder takes it: decoded within options.max_triangles, with
+// MeasureSamples(options, fallback) samples (0: the meter's default).
+StatusOr<double> MeasureEncodedPsnr(const std::vector<uint8_t>& stream, const EncodeOptions& options,
+                                    uint64_t fallback);
+
 struct EncodeReport {
   double lambda = 0;          // as coded (after the log2 code)
   int lambda_code = 0;

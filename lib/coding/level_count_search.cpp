@@ -48,9 +48,7 @@ StatusOr<Candidate> EncodeTruncated(const SemiRegularMesh& mesh, int levels, con
   Candidate c;
   EQMESH_ASSIGN_OR_RETURN(c.bytes, Encode(truncated, o, &c.report));
   if (!c.report.psnr_measured) {
-    EQMESH_ASSIGN_OR_RETURN(c.report.psnr_db,
-                            MeasureStreamPsnr(c.bytes, *options.original, MeasureSamples(options, kRankingSamples),
-                                              options.max_triangles));
+    EQMESH_ASSIGN_OR_RETURN(c.report.psnr_db, MeasureEncodedPsnr(c.bytes, options, kRankingSamples));
     c.report.psnr_measured = true;
   }
   return c;
@@ -160,9 +158,7 @@ StatusOr<std::vector<uint8_t>> EncodeChoosingLevels(const SemiRegularMesh& mesh,
     EQMESH_ASSIGN_OR_RETURN(chosen, ScanLevels(mesh, options, BetterAtRate, worse, &out));
   }
   if (options.measure_psnr) {
-    EQMESH_ASSIGN_OR_RETURN(chosen.report.psnr_db,
-                            MeasureStreamPsnr(chosen.bytes, *options.original, MeasureSamples(options, 0),
-                                              options.max_triangles));
+    EQMESH_ASSIGN_OR_RETURN(chosen.report.psnr_db, MeasureEncodedPsnr(chosen.bytes, options, 0));
   }
   if (report) *report = chosen.report;
   return std::move(chosen.bytes);
