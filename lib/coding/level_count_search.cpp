@@ -29,9 +29,11 @@ StatusOr<double> CeilingPsnr(const SemiRegularMesh& mesh, int levels, const Mesh
 // meter's sampling spread (about 0.01 dB at kRankingSamples).
 constexpr double kCeilingMarginDb = 0.05;
 
+constexpr char kOutOfReach[] = "is out of reach: ";
+
 Status TargetOutOfReach(double target, double best, const std::string& what) {
   char text[160];
-  std::snprintf(text, sizeof(text), "PSNR target %.2f dB is out of reach: %s measures %.2f dB", target,
+  std::snprintf(text, sizeof(text), "PSNR target %.2f dB %s%s measures %.2f dB", target, kOutOfReach,
                 what.c_str(), best);
   return Status(StatusCode::kTargetOutOfReach, text);
 }
@@ -82,7 +84,7 @@ StatusOr<Candidate> ScanLevels(const SemiRegularMesh& mesh, const EncodeOptions&
                                                                   MeasureSamples(options, kRankingSamples)));
       if (ceiling + kCeilingMarginDb < options.target_psnr) {
         out->trials.push_back({k, 0.0, ceiling, 0, false, false});
-        if (k == top) return TargetOutOfReach(options.target_psnr, ceiling, "the remesh itself");
+        if (k == top) return TargetOutOfReach(options.target_psnr, ceiling, kUncodedCeiling);
         continue;
       }
       some_ceiling_reaches = true;
@@ -109,6 +111,12 @@ StatusOr<Candidate> ScanLevels(const SemiRegularMesh& mesh, const EncodeOptions&
 }
 
 }  // namespace
+
+std::string OutOfReachReached(const Status& status) {
+  const std::string& m = status.message();
+  const size_t at = status.code() == StatusCode::kTargetOutOfReach ? m.find(kOutOfReach) : std::string::npos;
+  return at == std::string::npos ? m : m.substr(at + sizeof(kOutOfReach) - 1);
+}
 
 StatusOr<double> RemeshCeilingPsnr(const SemiRegularMesh& mesh, const Mesh& original) {
   return CeilingPsnr(mesh, mesh.hierarchy.levels(), original);

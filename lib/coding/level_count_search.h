@@ -19,6 +19,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "coding/encoder.h"
@@ -53,6 +54,14 @@ inline constexpr double kRemeshMarginDb = 1.0;
 // PSNR of the whole remesh, uncoded, against `original` (at the ranking sample
 // count): no stream of it can measure higher.
 StatusOr<double> RemeshCeilingPsnr(const SemiRegularMesh& mesh, const Mesh& original);
+
+// What a kTargetOutOfReach error of EncodeChoosingLevels says was reached: the
+// text after "is out of reach: " ("the best stream measures 68.12 dB"), or the
+// whole message of any other status. Where the whole mesh uncoded missed the
+// target it begins with kUncodedCeiling, which callers may rename for what
+// their mesh is.
+inline constexpr char kUncodedCeiling[] = "the remesh itself";
+std::string OutOfReachReached(const Status& status);
 
 // Encode() with the level count chosen as above. Without a bpv or PSNR target, or
 // without options.original, this is Encode() on all levels. The report's PSNR is

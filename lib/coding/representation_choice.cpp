@@ -52,13 +52,10 @@ bool Targeted(const EncodeOptions& options) { return options.target_psnr > 0 || 
 bool OutOfReach(const Status& status) { return status.code() == StatusCode::kTargetOutOfReach; }
 
 // Both representations short of a PSNR target: one line naming what each reached.
-// The as-is side's ceiling is its uncoded mesh, which the level search calls "the
-// remesh itself": said of the input as is, that would read as the remesh twice.
+// The as-is side's uncoded ceiling is the input's own mesh, not a remesh.
 Status BothOutOfReach(const Status& remeshed, const Status& as_is) {
-  const std::string& m = as_is.message();
-  const size_t at = m.find("out of reach: ");
-  std::string reached = at == std::string::npos ? m : m.substr(at + 14);
-  const std::string ceiling = "the remesh itself";
+  std::string reached = OutOfReachReached(as_is);
+  const std::string ceiling = kUncodedCeiling;
   if (reached.compare(0, ceiling.size(), ceiling) == 0) reached.replace(0, ceiling.size(), "the mesh itself, uncoded,");
   return Status(StatusCode::kTargetOutOfReach, remeshed.message() + "; coded as is, " + reached);
 }
