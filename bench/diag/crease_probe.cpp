@@ -7,16 +7,16 @@
 // (diagonal * 10^-3.5: the ones a 70 dB stream must code). It measures what a
 // crease-aware predictor (crease rules in the butterfly stencil) could save.
 //   crease_probe INPUT REMESH.srm [ANGLE=30]
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <algorithm>
 #include <string>
-#include <map>
 #include <unordered_map>
 #include <utility>
 #include <vector>
 
+#include "mesh/mesh_topology.h"
 #include "mesh/semi_regular.h"
 #include "mesh_io/mesh_io.h"
 #include "mesh_io/semi_regular_io.h"
@@ -30,18 +30,17 @@ using Segment = std::pair<Vec3, Vec3>;
 
 std::vector<Segment> SharpEdges(const Mesh& mesh, double angle_degrees) {
   const double cos_limit = std::cos(angle_degrees * M_PI / 180.0);
-  std::vector<Vec3> normals(mesh.faces.size());
-  std::map<std::pair<uint32_t, uint32_t>, std::vector<uint32_t>> edge_faces;
-  for (uint32_t f = 0; f < mesh.faces.size(); ++f) {
-    const Face& t = mesh.faces[f];
-    const Vec3& a = mesh.positions[t[0]];
-    normals[f] = (mesh.positions[t[1]] - a).cross(mesh.positions[t[2]] - a).normalized();
-    for (int i = 0; i < 3; ++i) edge_faces[std::minmax(t[i], t[(i + 1) % 3])].push_back(f);
-  }
+  const std::vector<Vec3> normals = FaceCrossProducts(mesh);
+  const MeshTopology topology(mesh);
   std::vector<Segment> sharp;
-  for (const auto& [edge, faces] : edge_faces) {
-    if (faces.size() == 2 && normals[faces[0]].dot(normals[faces[1]]) < cos_limit) {
-      sharp.emplace_back(mesh.positions[edge.first], mesh.positions[edge.second]);
+  for (uint32_t e = 0; e < topology.num_edges(); ++e) {
+    if (topology.EdgeFaceCount(e) != 2) continue;
+    const IndexRange h = topology.EdgeHalfedges(e);
+    const Vec3& a = normals[MeshTopology::HalfedgeFace(h[0])];
+    const Vec3& b = normals[MeshTopology::HalfedgeFace(h[1])];
+    if (a.dot(b) < cos_limit * a.norm() * b.norm()) {
+      const Edge& v = topology.EdgeVertices(e);
+      sharp.emplace_back(mesh.positions[v[0]], mesh.positions[v[1]]);
     }
   }
   return sharp;
