@@ -359,10 +359,15 @@ constexpr double kSearchMarginDb = 0.05;
 
 // The search's choice, measured at the default sample count; in the rare case
 // that it then misses the target, the smallest other pass that meets it (none:
-// the best one tried).
+// the best one tried). Without options.verify_target, the choice as searched.
 StatusOr<Pass> FinishQualitySearch(std::vector<Pass> passes, size_t chosen, const EncodeOptions& options,
                                    int evaluations) {
   if (chosen >= passes.size()) return InternalError("rate control lost its chosen point");
+  if (!options.verify_target) {
+    passes[chosen].report.psnr_measured = true;
+    passes[chosen].report.rate_evaluations = evaluations;
+    return std::move(passes[chosen]);
+  }
   std::swap(passes[0], passes[chosen]);
   std::sort(passes.begin() + 1, passes.end(), [](const Pass& a, const Pass& b) {
     return a.bytes.size() != b.bytes.size() ? a.bytes.size() < b.bytes.size()

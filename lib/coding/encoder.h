@@ -69,6 +69,11 @@ struct EncodeOptions {
   // defaults, 200k while searching lambda, 250k ranking level counts, the meter's own
   // for the reported PSNR). Fewer samples measure faster and coarser: for tests.
   uint64_t psnr_samples = 0;
+  // A PSNR-target search measures the stream it chose once more, at the meter's
+  // default sample count, before returning it (a search measures 200k samples).
+  // False returns the search's choice as measured: for a caller that compares
+  // several such streams and verifies only the one it keeps (the level search).
+  bool verify_target = true;
   // Code the base with Draco (streams version 1.1 decoders read) instead of the
   // compact base chunk (format 1.2, compact_base/): it costs the bunny 0.5 dB at 0.25 bpv.
   bool draco_base = false;

@@ -43,10 +43,13 @@ struct Candidate {
   EncodeReport report;
 };
 
-StatusOr<Candidate> EncodeTruncated(const SemiRegularMesh& mesh, int levels, const EncodeOptions& options) {
+// `start_lambda` > 0 starts a PSNR target's lambda search there.
+StatusOr<Candidate> EncodeTruncated(const SemiRegularMesh& mesh, int levels, const EncodeOptions& options,
+                                    double start_lambda = 0) {
   EQMESH_ASSIGN_OR_RETURN(SemiRegularMesh truncated, TruncateLevels(mesh, levels));
   EncodeOptions o = options;
   o.measure_psnr = false;
+  if (start_lambda > 0) o.lambda = start_lambda;
   Candidate c;
   EQMESH_ASSIGN_OR_RETURN(c.bytes, Encode(truncated, o, &c.report));
   if (!c.report.psnr_measured) {
@@ -89,7 +92,12 @@ StatusOr<Candidate> ScanLevels(const SemiRegularMesh& mesh, const EncodeOptions&
       }
       some_ceiling_reaches = true;
     }
-    EQMESH_ASSIGN_OR_RETURN(Candidate c, EncodeTruncated(mesh, k, options));
+    // A PSNR target's lambda at one more level is near the last one's: starting
+    // there saves most of the bracketing. (The search's answer does not depend on
+    // where it starts where quality is monotone in lambda; a rate target's, which
+    // takes the first stream within tolerance, would, so it starts as asked.)
+    const double start = options.target_psnr > 0 && have_previous ? previous.report.lambda : 0.0;
+    EQMESH_ASSIGN_OR_RETURN(Candidate c, EncodeTruncated(mesh, k, options, start));
     const bool feasible = options.target_psnr <= 0 || c.report.psnr_db >= options.target_psnr;
     out->trials.push_back({k, c.report.bpv, c.report.psnr_db, c.bytes.size(), feasible});
     const bool stop = have_previous && worse(c, previous);
@@ -108,6 +116,35 @@ StatusOr<Candidate> ScanLevels(const SemiRegularMesh& mesh, const EncodeOptions&
     return TargetOutOfReach(options.target_psnr, closest, "the best stream");
   }
   return best;
+}
+
+// Smallest stream meeting the PSNR target; a level count that needs more bytes
+// than the previous one (both meeting it) ends the scan. The candidates are
+// compared as their searches measured them, and only the kept one is measured
+// again at the meter's default count (EncodeOptions::verify_target), which
+// saves a default-count measurement per level count. Should the kept stream
+// miss the target there, the scan is run again verifying every candidate, as
+// the search within one level count does, so the answer is the one a fully
+// verified scan gives.
+StatusOr<Candidate> ScanLevelsForQuality(const SemiRegularMesh& mesh, const EncodeOptions& options,
+                                         LevelCountReport* out) {
+  auto better = [](const Candidate& a, const Candidate& b) { return a.bytes.size() < b.bytes.size(); };
+  auto worse = [&](const Candidate& next, const Candidate& prev) {
+    return prev.report.psnr_db >= options.target_psnr && next.bytes.size() > prev.bytes.size();
+  };
+  EncodeOptions unverified = options;
+  unverified.verify_target = false;
+  EQMESH_ASSIGN_OR_RETURN(Candidate chosen, ScanLevels(mesh, unverified, better, worse, out));
+  EQMESH_ASSIGN_OR_RETURN(const double verified, MeasureEncodedPsnr(chosen.bytes, options, 0));
+  if (verified >= options.target_psnr) {
+    chosen.report.psnr_db = verified;
+    for (LevelCountTrial& t : out->trials) {
+      if (t.levels == out->chosen_levels && t.coded) t.psnr_db = verified;
+    }
+    return chosen;
+  }
+  *out = LevelCountReport();
+  return ScanLevels(mesh, options, better, worse, out);
 }
 
 }  // namespace
@@ -152,20 +189,14 @@ StatusOr<std::vector<uint8_t>> EncodeChoosingLevels(const SemiRegularMesh& mesh,
   }
   Candidate chosen;
   if (options.target_psnr > 0) {
-    // Smallest stream meeting the target; a level count that needs more bytes
-    // than the previous one (both meeting it) ends the scan.
-    auto better = [](const Candidate& a, const Candidate& b) { return a.bytes.size() < b.bytes.size(); };
-    auto worse = [&](const Candidate& next, const Candidate& prev) {
-      return prev.report.psnr_db >= options.target_psnr && next.bytes.size() > prev.bytes.size();
-    };
-    EQMESH_ASSIGN_OR_RETURN(chosen, ScanLevels(mesh, options, better, worse, &out));
+    EQMESH_ASSIGN_OR_RETURN(chosen, ScanLevelsForQuality(mesh, options, &out));
   } else {
     auto worse = [](const Candidate& next, const Candidate& prev) {
       return next.report.psnr_db < prev.report.psnr_db;
     };
     EQMESH_ASSIGN_OR_RETURN(chosen, ScanLevels(mesh, options, BetterAtRate, worse, &out));
   }
-  if (options.measure_psnr) {
+  if (options.measure_psnr && options.target_psnr <= 0) {  // a PSNR target's choice is measured so already
     EQMESH_ASSIGN_OR_RETURN(chosen.report.psnr_db, MeasureEncodedPsnr(chosen.bytes, options, 0));
   }
   if (report) *report = chosen.report;

@@ -1,7 +1,8 @@
 // Rate control: choose the R-D slope lambda that meets a size or quality target.
 //
 // lambda travels in the header as a log2 code (bitstream_shared.h), so the search
-// runs over integer codes: bracket by doubling steps, then bisect. Both the rate
+// runs over integer codes: bracket by doubling steps, then narrow the bracket by
+// interpolation kept in check by bisection (rate_control.cpp). Both the rate
 // and the quality grow (almost) monotonically with lambda; where they do not, the
 // search still terminates and returns the best point it saw.
 #pragma once
