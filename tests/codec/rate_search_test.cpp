@@ -1,0 +1,85 @@
+// The lambda-code searches of rate_control.h on synthetic quality curves: the
+// answer they must give is known exactly, whatever the path.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+
+#include "coding/rate_control.h"
+
+namespace eqmesh {
+namespace {
+
+using Curve = std::function<double(int64_t)>;
+
+RateEvaluator Evaluating(const Curve& psnr, int* calls) {
+  return [psnr, calls](int64_t code) -> StatusOr<RatePoint> {
+    ++*calls;
+    RatePoint p;
+    p.lambda_code = code;
+    p.psnr_db = psnr(code);
+    p.bpv = std::exp2(static_cast<double>(code) / 16.0);
+    return p;
+  };
+}
+
+// The smallest code in [-range, range] whose quality meets the target, by brute force.
+int64_t SmallestMeeting(const Curve& psnr, double target, int64_t range = 400) {
+  for (int64_t c = -range; c <= range; ++c) {
+    if (psnr(c) >= target) return c;
+  }
+  return range + 1;
+}
+
+TEST(RateSearch, QualitySearchFindsTheSmallestCodeThatMeetsAMonotoneTarget) {
+  const Curve curves[] = {
+      [](int64_t c) { return 60.0 + 0.1 * static_cast<double>(c); },                  // linear
+      [](int64_t c) { return 70.0 + 10.0 * std::tanh(static_cast<double>(c) / 20.0); },  // saturating
+      [](int64_t c) { return 50.0 + 0.5 * std::floor(static_cast<double>(c) / 7.0); },   // steps
+  };
+  for (const Curve& psnr : curves) {
+    for (double target : {55.5, 63.37, 71.2, 75.01}) {
+      for (int64_t start : {-90, 0, 17, 120}) {
+        const int64_t want = SmallestMeeting(psnr, target);
+        if (want > 400 || want == -400) continue;  // the answer lies beyond the brute-force range
+        int calls = 0;
+        auto got = SearchForQuality(Evaluating(psnr, &calls), target, start);
+        ASSERT_TRUE(got.ok()) << got.status().message();
+        EXPECT_EQ(got->lambda_code, want) << "target " << target << " start " << start;
+        EXPECT_GE(got->psnr_db, target);
+      }
+    }
+  }
+}
+
+TEST(RateSearch, QualitySearchNarrowsALinearBracketInAFewEvaluations) {
+  // The interpolated guess lands next to the answer; its neighbour closes the
+  // interval. Bisection alone would take four evaluations after the bracket.
+  const Curve linear = [](int64_t c) { return 60.0 + 0.1 * static_cast<double>(c); };
+  int calls = 0;
+  auto got = SearchForQuality(Evaluating(linear, &calls), 61.23, 0);
+  ASSERT_TRUE(got.ok());
+  EXPECT_EQ(got->lambda_code, 13);
+  EXPECT_LE(calls, 4) << "bracket (0, 16), then the guess 13 and its neighbour 12";
+}
+
+TEST(RateSearch, QualitySearchOutOfReachReturnsTheBestPointItSaw) {
+  const Curve capped = [](int64_t c) { return 40.0 + 10.0 * std::tanh(static_cast<double>(c) / 50.0); };
+  int calls = 0;
+  auto got = SearchForQuality(Evaluating(capped, &calls), 60.0, 0);
+  ASSERT_TRUE(got.ok());
+  EXPECT_LT(got->psnr_db, 60.0);
+  EXPECT_GT(got->psnr_db, 49.0) << "the highest code searched, near the cap";
+}
+
+TEST(RateSearch, InfiniteQualityIsBisectedNotInterpolated) {
+  // A lossless stream measures +inf; interpolating toward it must not leave the bracket.
+  const Curve lossless_above = [](int64_t c) { return c >= 9 ? INFINITY : 60.0 + 0.1 * static_cast<double>(c); };
+  int calls = 0;
+  auto got = SearchForQuality(Evaluating(lossless_above, &calls), 61.5, 0);
+  ASSERT_TRUE(got.ok());
+  EXPECT_EQ(got->lambda_code, 9);
+}
+
+}  // namespace
+}  // namespace eqmesh
