@@ -7,6 +7,7 @@
 // added to the stream corpus.
 //
 //   eqmesh_fuzz_seeds OUT_DIR [STREAM.eqm ...]
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -79,8 +80,9 @@ void Write(const fs::path& path, const std::vector<uint8_t>& bytes) {
 void Write(const fs::path& path, const std::string& text) { Write(path, std::vector<uint8_t>(text.begin(), text.end())); }
 
 std::vector<uint8_t> WithControl(uint8_t control, const std::vector<uint8_t>& bytes) {
-  std::vector<uint8_t> out{control};
-  out.insert(out.end(), bytes.begin(), bytes.end());
+  std::vector<uint8_t> out(bytes.size() + 1);
+  out[0] = control;
+  std::copy(bytes.begin(), bytes.end(), out.begin() + 1);
   return out;
 }
 

@@ -14,7 +14,10 @@
 # (default 10 s per input). Any crash, leak, sanitizer report, timeout or OOM fails
 # the script (artifacts in build-fuzz/artifacts/<target>/); executions and corpus
 # size are printed per target. FUZZ_TARGETS="eqm_decode read_ply" runs a subset;
-# FUZZ_LOG_DIR keeps each target's full log.
+# FUZZ_LOG_DIR keeps each target's full log. FUZZ_SEEDS=PATH takes the seed
+# generator from another build (every test build has one, in
+# tests/fuzz_regressions/): the fuzz build then compiles only the targets and what
+# they link, not the encoder (scripts/test.sh passes the sanitizer build's).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -35,15 +38,16 @@ build() {
   command -v "$cxx" >/dev/null || { echo "fuzz: $cxx not found (apt-get install clang)" >&2; exit 1; }
   cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER="$cxx" \
     -DEQMESH_FUZZ=ON -DEQMESH_BUILD_TESTS=OFF >/dev/null
-  local targets=(eqmesh_fuzz_seeds)
+  local targets=()
+  [[ -n "${FUZZ_SEEDS:-}" ]] || targets+=(eqmesh_fuzz_seeds)
   for t in "${ALL_TARGETS[@]}"; do targets+=("fuzz_$t"); done
   cmake --build "$BUILD_DIR" -j "$JOBS" --target "${targets[@]}"
 }
 
 corpus() {
-  local seeds=("$BUILD_DIR"/fuzz/eqmesh_fuzz_seeds)
-  [[ -x "${seeds[0]}" ]] || { echo "fuzz: build first (scripts/fuzz.sh build)" >&2; exit 1; }
-  ASAN_OPTIONS=detect_leaks=0 "${seeds[0]}" "$BUILD_DIR/corpus" tests/codec/data/*.eqm
+  local seeds="${FUZZ_SEEDS:-$BUILD_DIR/fuzz/eqmesh_fuzz_seeds}"
+  [[ -x "$seeds" ]] || { echo "fuzz: no seed generator at $seeds (scripts/fuzz.sh build)" >&2; exit 1; }
+  ASAN_OPTIONS=detect_leaks=0 "$seeds" "$BUILD_DIR/corpus" tests/codec/data/*.eqm
   for t in "${ALL_TARGETS[@]}"; do
     echo "corpus/$t: $(find "$BUILD_DIR/corpus/$t" -type f | wc -l) files"
   done

@@ -45,6 +45,9 @@ if has_stage sanitizers; then
 fi
 if has_stage fuzz; then
   stage "libFuzzer smoke run"
+  # The sanitizer build's seed generator spares the fuzz build the encoder.
+  seeds="${SANITIZER_BUILD_DIR:-build-asan}/tests/fuzz_regressions/eqmesh_fuzz_seeds"
+  if [[ -x "$seeds" ]] && has_stage sanitizers; then export FUZZ_SEEDS="$PWD/$seeds"; fi
   FUZZ_SMOKE_SECONDS="${FUZZ_SMOKE_SECONDS:-10}" bash scripts/fuzz.sh smoke
 fi
 stage "all passed"
