@@ -19,13 +19,6 @@
 
 namespace eqmesh::remesh_internal {
 
-// Levels with at least this many faces per input face are refined in 3D (see
-// LevelRefiner::fine_). Measured on the bench meshes: 0.5 (the level after the
-// last one coarser than the input's half) folds 3x fewer faces than 1; 0.15
-// loses up to 20 dB where coarse levels still need the charts' protection on
-// thin parts.
-inline constexpr double kFineLevelFaceRatio = 0.5;
-
 using Vec3d = Eigen::Vector3d;
 
 struct EdgeChoice {
@@ -41,7 +34,7 @@ class LevelRefiner {
   LevelRefiner(const SemiRegularHierarchy& h, int j, const InputSurface& s,
                std::vector<Vec3>* positions, const std::vector<uint32_t>& on_faces, std::vector<ParamPoint>* params)
       : h_(h), j_(j), s_(s), dom_(h, j), pos_(*positions), on_face_(on_faces), params_(*params) {
-    fine_ = static_cast<double>(dom_.faces().size()) >= kFineLevelFaceRatio * static_cast<double>(s.mesh->faces.size());
+    fine_ = RefinedIn3d(dom_.faces().size(), s.mesh->faces.size());
   }
 
   void Run(const StencilTable& stencils, std::vector<Vec3>* positions, std::vector<uint32_t>* on_faces,

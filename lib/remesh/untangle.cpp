@@ -74,6 +74,7 @@ struct Untangler {
   double degenerate_double_area;
   // Fold tests the untangler may still make (kWorkPerFace).
   mutable size_t work_left = 0;
+  LevelUse use = LevelUse::kFinal;
   // Cluster sweeps that failed, by everything they read (SweepInput) and the
   // sweep kind, with the work they spent. The same cluster from the same
   // positions fails the same way, and the ring widths, level trials and
@@ -265,6 +266,7 @@ struct Untangler {
     Vec3 best = start;
     std::pair<size_t, double> best_score = before;
     for (const bool off_surface : {false, true}) {
+      if (off_surface && use == LevelUse::kPiercedFrom) break;
       for (const Vec3& aim : aims) {
         for (double t : kBlends) {
           const std::optional<Vec3> candidate = Candidate(v, aim, facing, t, off_surface);
@@ -449,12 +451,14 @@ struct Untangler {
   }
 };
 
-// Vertices at or after `first` that may move: all but base vertices (boundary
-// ones slide along the input's boundary curves).
-std::vector<uint8_t> MovableFrom(uint32_t first, const std::vector<VertexKind>& kinds) {
+// Vertices at or after `first` that may move: all but base vertices, and
+// boundary ones (which slide along the input's boundary curves) only on the
+// final level (LevelUse).
+std::vector<uint8_t> MovableFrom(uint32_t first, const std::vector<VertexKind>& kinds, LevelUse use) {
   std::vector<uint8_t> movable(kinds.size(), 0);
   for (size_t v = first; v < kinds.size(); ++v) {
-    movable[v] = kinds[v] != VertexKind::kBase;
+    movable[v] = kinds[v] != VertexKind::kBase &&
+                 (kinds[v] != VertexKind::kBoundary || use == LevelUse::kFinal);
   }
   return movable;
 }
@@ -558,7 +562,7 @@ std::pair<std::vector<VertexKind>, size_t> UntangleFrom(const SemiRegularHierarc
                                                         std::optional<size_t> budget_left, StencilCache* cache,
                                                         Untangler* u) {
   std::vector<uint8_t> moved(u->pos.size(), 0);
-  const std::vector<uint8_t> movable = MovableFrom(h.NumVertices(first), kinds);
+  const std::vector<uint8_t> movable = MovableFrom(h.NumVertices(first), kinds, u->use);
   NormalBudget budget(budget_left);
   // A smoothed cluster can leave folds single moves then undo.
   for (const int rings : kClusterRings) {
@@ -671,12 +675,15 @@ size_t MoveCornersOfNewFolds(const SemiRegularHierarchy& hierarchy, const std::v
 }  // namespace
 
 size_t UntangleFinestLevel(const SemiRegularHierarchy& hierarchy, const InputSurface& surface,
-                           const std::vector<uint32_t>& folded, std::vector<StencilTable> built,
-                           std::vector<Vec3>* positions, std::vector<VertexKind>* kinds) {
+                           const std::vector<uint32_t>& folded, const std::vector<StencilTable>& built,
+                           std::vector<Vec3>* positions, std::vector<VertexKind>* kinds, LevelUse use,
+                           std::vector<uint32_t>* still_folded) {
+  if (still_folded) still_folded->clear();
   if (hierarchy.levels() < 1 || folded.empty()) return 0;
   Untangler u(hierarchy.Faces(hierarchy.levels()), surface, positions, *kinds);
+  u.use = use;
   const std::vector<Vec3> start = *positions;
-  StencilCache stencils(hierarchy, std::move(built));
+  StencilCache stencils(hierarchy, built);
   size_t marked = MoveFoldedCorners(hierarchy, folded, start, &stencils, kinds, &u);
   // The refills' non-normal vertices may not take the share below the floor
   // the moves kept: then they are undone as a whole.
@@ -692,7 +699,9 @@ size_t UntangleFinestLevel(const SemiRegularHierarchy& hierarchy, const InputSur
     *kinds = std::move(refilled_kinds);
     marked += refill_marked;
   }
-  return marked + MoveCornersOfNewFolds(hierarchy, folded, start, &stencils, kinds, &u);
+  marked += MoveCornersOfNewFolds(hierarchy, folded, start, &stencils, kinds, &u);
+  if (still_folded) *still_folded = StillFolded(u, folded, start);
+  return marked;
 }
 
 }  // namespace eqmesh

@@ -1,4 +1,6 @@
-// Fold removal on the finest level of a remesh, after the last refinement.
+// Fold removal on the finest level of a remesh. Remesh() runs it after every
+// refinement, on the level just pierced, so each level is pierced from an
+// unfolded one (remesh.cpp, UntangleNewLevel).
 //
 // Departure from Guskov et al. 2000 (whose remesh has no such pass): a face of
 // the finest level that faces away from the input (quality_checks.h) gets its
@@ -34,12 +36,22 @@
 
 namespace eqmesh {
 
+// What the untangled level is for. One that more levels will be pierced from
+// keeps its boundary vertices where they are (the next level's boundary
+// midpoints are placed by the input's parameters between them) and moves
+// vertices only to points of the input: it is the finest level's vertices too,
+// and a coarse face's error allowance would leave them far off the surface.
+enum class LevelUse { kPiercedFrom, kFinal };
+
 // `folded`: the finest faces that fold (LevelStats::folded_faces of the last
 // refinement). `built`: the refinement's butterfly stencils, level by level
-// (any prefix, also none; the rest are built when needed). Returns how many
-// normal vertices became non-normal.
+// (any prefix, also none; the rest are built when needed). `still_folded`,
+// when given, gets the faces that fold afterwards among those it looked at.
+// Returns how many normal vertices became non-normal.
 size_t UntangleFinestLevel(const SemiRegularHierarchy& hierarchy, const InputSurface& surface,
-                           const std::vector<uint32_t>& folded, std::vector<StencilTable> built,
-                           std::vector<Vec3>* positions, std::vector<VertexKind>* kinds);
+                           const std::vector<uint32_t>& folded, const std::vector<StencilTable>& built,
+                           std::vector<Vec3>* positions, std::vector<VertexKind>* kinds,
+                           LevelUse use = LevelUse::kFinal,
+                           std::vector<uint32_t>* still_folded = nullptr);
 
 }  // namespace eqmesh
