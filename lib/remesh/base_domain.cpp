@@ -87,14 +87,14 @@ void ClampIntoTriangle(std::array<double, 3>* bary) {
 class Simplifier {
  public:
   Simplifier(const Mesh& mesh, const TriangleBvh& bvh, const std::vector<uint8_t>& is_boundary,
-             double max_error_share);
+             const BaseDomainOptions& options);
   void Run(size_t target, const ProgressFn& progress);
   void RaiseValenceThree();
   BaseDomain Extract() const;
 
  private:
   void InitLoops(const MeshTopology& topology);
-  void InitErrorBounds(const MeshTopology& topology, double max_error_share);
+  void InitErrorBounds(const MeshTopology& topology, const BaseDomainOptions& options);
   bool BuildRing(uint32_t v, Ring* ring) const;
   // Sorted, without repeats, into *out (storage reused).
   void Neighbours(uint32_t v, std::vector<uint32_t>* out) const;
@@ -175,7 +175,7 @@ class Simplifier {
 };
 
 Simplifier::Simplifier(const Mesh& mesh, const TriangleBvh& bvh, const std::vector<uint8_t>& is_boundary,
-                       double max_error_share)
+                       const BaseDomainOptions& options)
     : pos_(mesh.positions), bvh_(bvh), input_(mesh), boundary_(is_boundary), faces_(mesh.faces) {
   const size_t n = pos_.size();
   face_alive_.assign(faces_.size(), 1);
@@ -196,13 +196,14 @@ Simplifier::Simplifier(const Mesh& mesh, const TriangleBvh& bvh, const std::vect
   }
   const MeshTopology topology(mesh);
   InitLoops(topology);
-  InitErrorBounds(topology, max_error_share);
+  InitErrorBounds(topology, options);
 }
 
 // Each component is bounded by its own diagonal, so a small part beside a large
 // one (a bone of a skeleton) keeps its shape too.
-void Simplifier::InitErrorBounds(const MeshTopology& topology, double max_error_share) {
+void Simplifier::InitErrorBounds(const MeshTopology& topology, const BaseDomainOptions& options) {
   max_error2_.assign(pos_.size(), std::numeric_limits<double>::infinity());
+  const double max_error_share = options.max_error_share;
   if (!(max_error_share > 0.0)) return;
   const std::vector<uint32_t>& face_component = topology.FaceComponents();
   const double inf = std::numeric_limits<double>::infinity();
@@ -217,6 +218,11 @@ void Simplifier::InitErrorBounds(const MeshTopology& topology, double max_error_
   for (size_t f = 0; f < faces_.size(); ++f) {
     const double bound = max_error_share * boxes[face_component[f]].Diagonal();
     for (uint32_t c : faces_[f]) max_error2_[c] = bound * bound;
+  }
+  if (options.bound_scale.size() != pos_.size()) return;
+  for (size_t v = 0; v < pos_.size(); ++v) {
+    const double scale = options.bound_scale[v];
+    max_error2_[v] *= scale * scale;
   }
 }
 
@@ -964,7 +970,7 @@ StatusOr<BaseDomain> BuildBaseDomain(const Mesh& mesh, const TriangleBvh& bvh,
                                      const std::vector<uint8_t>& is_boundary, const BaseDomainOptions& options) {
   if (mesh.faces.empty()) return InvalidMesh("no faces to simplify");
   if (is_boundary.size() != mesh.positions.size()) return InternalError("boundary flags size mismatch");
-  Simplifier s(mesh, bvh, is_boundary, options.max_error_share);
+  Simplifier s(mesh, bvh, is_boundary, options);
   s.Run(options.target_vertices, options.progress);
   s.RaiseValenceThree();
   BaseDomain base = s.Extract();

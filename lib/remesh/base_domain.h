@@ -64,6 +64,9 @@ struct BaseDomainOptions {
   // A collapse may not take any input vertex farther than this share of its
   // component's bounding-box diagonal from its image on the base. 0: no bound.
   double max_error_share = 0.0;
+  // Per input vertex, a factor on that bound (empty: 1 everywhere): Remesh()
+  // tightens it where a remesh still folded (remesh.cpp).
+  std::vector<double> bound_scale;
   ProgressFn progress;
 };
 

@@ -67,6 +67,10 @@ constexpr size_t kMinBasePerComponent = 8;
 // (77.5, 78.4, 74.1, 83.4 dB), so every halving is measured and the best kept.
 constexpr int kFloorRetries = 4;
 constexpr double kFloorReachDb = 20.0;
+// Remeshes with the base bound tightened where the finest level still folds
+// (RemeshWithFewerFolds), and the factor each applies there.
+constexpr int kFoldRetries = 2;
+constexpr double kFoldBoundScale = 0.25;
 
 struct Prepared {
   Mesh surface;                  // components to remesh, compacted
@@ -243,6 +247,7 @@ struct Refinement {
   std::vector<double> estimated_psnr_db_per_level;
   std::vector<StencilTable> stencils;  // of each refinement, for the untangling
   std::vector<uint32_t> folded_faces;  // of the finest level, as far as known
+  std::vector<uint32_t> input_base_face;  // base face of each input vertex's parameter
   double untangle_seconds = 0.0;
 };
 
@@ -354,7 +359,8 @@ struct SurfaceContext {
 
 // Base domain, every level and the untangling, at one base error bound; adds
 // each stage's seconds to the report.
-StatusOr<Refinement> RemeshSurface(const SurfaceContext& c, double error_share, RemeshReport* report) {
+StatusOr<Refinement> RemeshSurface(const SurfaceContext& c, double error_share, const std::vector<double>& bound_scale,
+                                   RemeshReport* report) {
   auto lap = std::chrono::steady_clock::now();
   const auto seconds_since_lap = [&lap] {
     const auto now = std::chrono::steady_clock::now();
@@ -362,7 +368,8 @@ StatusOr<Refinement> RemeshSurface(const SurfaceContext& c, double error_share, 
     lap = now;
     return s;
   };
-  const BaseDomainOptions base_options = BaseOptions(c.prep, c.options, error_share);
+  BaseDomainOptions base_options = BaseOptions(c.prep, c.options, error_share);
+  base_options.bound_scale = bound_scale;
   EQMESH_ASSIGN_OR_RETURN(BaseDomain base, BuildBaseDomain(c.prep.surface, c.bvh, c.prep.boundary, base_options));
   report->stage_seconds.base_domain += seconds_since_lap();
   if (c.options.base_vertices > 0 && base.base_to_input.size() > base_options.target_vertices) {
@@ -374,6 +381,8 @@ StatusOr<Refinement> RemeshSurface(const SurfaceContext& c, double error_share, 
   EQMESH_ASSIGN_OR_RETURN(Refinement r, RefineAllLevels(refine));
   report->stage_seconds.refine += seconds_since_lap() - r.untangle_seconds;
   report->stage_seconds.untangle += r.untangle_seconds;
+  r.input_base_face.reserve(base.params.size());
+  for (const ParamPoint& p : base.params) r.input_base_face.push_back(p.face);
   return r;
 }
 
@@ -382,20 +391,25 @@ StatusOr<Refinement> RemeshSurface(const SurfaceContext& c, double error_share, 
 // kFloorRetries times), keeping the best. Where the shape has detail below the
 // 2 % bound (fingers, toes, claws) the remesh loses it at every level; a floor
 // that asks for that detail pays for a finer base only there.
+// The floor's meter on a refinement; adds its seconds to the report.
+double MeasureRemeshPsnr(const SurfaceContext& c, const Refinement& r, RemeshReport* report) {
+  const auto measuring = std::chrono::steady_clock::now();
+  const double psnr = MeasureLevelPsnr(c.prep.surface, r.positions, r.hierarchy.Faces(r.levels));
+  report->stage_seconds.measure += std::chrono::duration<double>(std::chrono::steady_clock::now() - measuring).count();
+  return psnr;
+}
+
 StatusOr<Refinement> RemeshMeetingFloor(const SurfaceContext& c, RemeshReport* report) {
   const bool floor = c.options.min_psnr > 0 && c.options.base_vertices <= 0;
   double share = kBaseErrorShare;
   Refinement best;
   for (int attempt = 0;; ++attempt) {
-    EQMESH_ASSIGN_OR_RETURN(Refinement r, RemeshSurface(c, share, report));
+    EQMESH_ASSIGN_OR_RETURN(Refinement r, RemeshSurface(c, share, {}, report));
     if (!floor) {
       report->base_error_share = c.options.base_vertices > 0 ? 0.0 : share;
       return r;
     }
-    const auto measuring = std::chrono::steady_clock::now();
-    const double psnr = MeasureLevelPsnr(c.prep.surface, r.positions, r.hierarchy.Faces(r.levels));
-    report->stage_seconds.measure +=
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - measuring).count();
+    const double psnr = MeasureRemeshPsnr(c, r, report);
     if (attempt == 0 || psnr > report->psnr_db) {
       best = std::move(r);
       report->psnr_db = psnr;
@@ -413,6 +427,52 @@ StatusOr<Refinement> RemeshMeetingFloor(const SurfaceContext& c, RemeshReport* r
     report->notes.push_back(note);
     share /= 2.0;
   }
+}
+
+// Scales the base bound by kFoldBoundScale for every input vertex whose
+// parameter lies in a base face with a folded descendant; returns how many
+// base faces that concerned.
+size_t TightenOverFolds(const Refinement& r, std::vector<double>* scale) {
+  std::vector<uint8_t> folded(r.hierarchy.BaseFaces().size(), 0);
+  const int shift = 2 * r.levels;  // the faces of base face t at level L: [t * 4^L, (t + 1) * 4^L)
+  for (uint32_t f : r.folded_faces) folded[f >> shift] = 1;
+  for (size_t x = 0; x < scale->size(); ++x) {
+    if (folded[r.input_base_face[x]]) (*scale)[x] *= kFoldBoundScale;
+  }
+  return static_cast<size_t>(std::count(folded.begin(), folded.end(), 1));
+}
+
+// RemeshMeetingFloor, then, while the finest level still folds, up to
+// kFoldRetries remeshes at the bound it kept, each with the bound tightened
+// over the base faces whose descendants fold (TightenOverFolds, cumulative).
+// A retry is kept when it folds fewer faces and, under a floor, measures at
+// least the floor or the kept remesh, whichever is lower; the first that is
+// not ends the retries (fold counts move chaotically with the base: diplodocus
+// 117 -> 178 -> 381, dino 6 -> 15 -> 17, while cow goes 96 -> 84 -> 0 and
+// femur 132 -> 95 -> 74; bench/log/2026-12-06-level-untangle.md). Folds that survive
+// the untangling sit where a base face spans a part thinner than the finest
+// level can follow or a crease sharper than 90 degrees; a finer base there
+// gives those regions more levels' resolution (a uniformly finer base lowers
+// the folds as much but doubles the remesh everywhere).
+StatusOr<Refinement> RemeshWithFewerFolds(const SurfaceContext& c, RemeshReport* report) {
+  EQMESH_ASSIGN_OR_RETURN(Refinement best, RemeshMeetingFloor(c, report));
+  if (c.options.base_vertices > 0) return best;
+  const bool floor = c.options.min_psnr > 0;
+  std::vector<double> scale(c.prep.surface.positions.size(), 1.0);
+  for (int retry = 0; retry < kFoldRetries && !best.folded_faces.empty(); ++retry) {
+    const size_t regions = TightenOverFolds(best, &scale);
+    EQMESH_ASSIGN_OR_RETURN(Refinement r, RemeshSurface(c, report->base_error_share, scale, report));
+    if (r.folded_faces.size() >= best.folded_faces.size()) break;
+    const double psnr = floor ? MeasureRemeshPsnr(c, r, report) : 0.0;
+    if (floor && psnr < std::min(c.options.min_psnr, report->psnr_db)) break;
+    char note[160];
+    std::snprintf(note, sizeof(note), "base bound tightened over %zu base faces whose descendants folded: %zu -> %zu "
+                  "folded faces", regions, best.folded_faces.size(), r.folded_faces.size());
+    report->notes.push_back(note);
+    best = std::move(r);
+    if (floor) report->psnr_db = psnr;
+  }
+  return best;
 }
 
 }  // namespace
@@ -462,7 +522,7 @@ StatusOr<SemiRegularMesh> Remesh(const Mesh& input, const RemeshOptions& options
   report.stage_seconds.prepare = seconds_since_lap();
   const InputSurface surface(prep.surface, bvh, prep.boundary);
   const SurfaceContext context{prep, bvh, surface, options, AutoDensityTarget(prep.surface, prep.input_vertices)};
-  EQMESH_ASSIGN_OR_RETURN(Refinement best, RemeshMeetingFloor(context, &report));
+  EQMESH_ASSIGN_OR_RETURN(Refinement best, RemeshWithFewerFolds(context, &report));
   report.base_vertices = best.hierarchy.NumVertices(0);
   CountNormalVertices(best.hierarchy, best.kinds, &report);
   out.hierarchy = std::move(best.hierarchy);

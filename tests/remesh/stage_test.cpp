@@ -43,7 +43,7 @@ struct BaseRun {
   BaseDomain base;
 };
 
-BaseRun BuildBase(const Mesh& mesh, double error_share) {
+BaseRun BuildBase(const Mesh& mesh, double error_share, std::vector<double> bound_scale = {}) {
   BaseRun run;
   auto bvh = TriangleBvh::Build(mesh);
   EXPECT_TRUE(bvh.ok()) << bvh.status().ToString();
@@ -51,6 +51,7 @@ BaseRun BuildBase(const Mesh& mesh, double error_share) {
   BaseDomainOptions options;
   options.target_vertices = 4;
   options.max_error_share = error_share;
+  options.bound_scale = std::move(bound_scale);
   auto base = BuildBaseDomain(mesh, run.bvh, std::vector<uint8_t>(mesh.positions.size(), 0), options);
   EXPECT_TRUE(base.ok()) << base.status().ToString();
   if (base.ok()) run.base = std::move(base).value();
@@ -95,6 +96,35 @@ TEST(BaseDomain, EveryInputVertexStaysWithinTheErrorBound) {
     const BaseRun free = BuildBase(s.mesh, 0.0);
     EXPECT_GT(LargestMapError(s.mesh, free.base), 2.0 * bound) << s.name;
     EXPECT_LT(free.base.base_to_input.size(), run.base.base_to_input.size()) << s.name;
+  }
+}
+
+// Remesh tightens the bound where a remesh still folded (bound_scale): the base
+// gets finer there, keeps the unscaled bound and the genus, and a scale of 1
+// changes nothing.
+TEST(BaseDomain, ScaledBoundRefinesTheBaseWhereScaled) {
+  for (const Shape& s : HardShapes()) {
+    const BaseRun plain = BuildBase(s.mesh, kErrorShare);
+    const BaseRun ones = BuildBase(s.mesh, kErrorShare, std::vector<double>(s.mesh.positions.size(), 1.0));
+    EXPECT_EQ(ones.base.base_to_input, plain.base.base_to_input) << s.name;
+    EXPECT_EQ(ones.base.faces, plain.base.faces) << s.name;
+    // Tighten the half of the shape with x > 0.
+    std::vector<double> scale(s.mesh.positions.size(), 1.0);
+    for (size_t v = 0; v < scale.size(); ++v) {
+      if (s.mesh.positions[v].x() > 0.0) scale[v] = 0.25;
+    }
+    const BaseRun tight = BuildBase(s.mesh, kErrorShare, scale);
+    auto count_in_tight_half = [&](const BaseDomain& base) {
+      size_t n = 0;
+      for (uint32_t v : base.base_to_input) n += scale[v] < 1.0;
+      return n;
+    };
+    EXPECT_GT(count_in_tight_half(tight.base), count_in_tight_half(plain.base)) << s.name;
+    // The untightened bound still holds everywhere.
+    EXPECT_LE(LargestMapError(s.mesh, tight.base), kErrorShare * BoundingBoxDiagonal(s.mesh) * (1.0 + 1e-9)) << s.name;
+    const testing::LevelTopology t = testing::CheckLevelTopology(BaseMesh(s.mesh, tight.base));
+    EXPECT_TRUE(t.manifold) << s.name;
+    EXPECT_EQ(t.euler, 2 - 2 * s.genus) << s.name;
   }
 }
 
