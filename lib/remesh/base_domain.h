@@ -24,7 +24,9 @@
 //    its size, so those regions keep their base vertices while flat and gently
 //    curved regions simplify on; the base size is an outcome (Remesh reports
 //    it). This is the simplification envelope of Cohen et al. (SIGGRAPH 1996)
-//    measured through the MAPS map instead of by offset surfaces.
+//    measured through the MAPS map instead of by offset surfaces. The bound
+//    may be scaled per input vertex (BaseDomainOptions::bound_scale): Remesh()
+//    tightens it over base faces whose remesh still folded.
 //  * A collapse must pass the link condition, keep valences in [3, 12], keep
 //    every boundary loop at >= 3 vertices, give positively oriented fan
 //    triangles in the flat chart, not turn any face by more than ~80° in 3D, and
