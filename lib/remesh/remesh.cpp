@@ -452,8 +452,8 @@ size_t TightenOverFolds(const Refinement& r, std::vector<double>* scale) {
 // femur 132 -> 95 -> 74; bench/log/2026-12-06-level-untangle.md). Folds that survive
 // the untangling sit where a base face spans a part thinner than the finest
 // level can follow or a crease sharper than 90 degrees; a finer base there
-// gives those regions more levels' resolution (a uniformly finer base lowers
-// the folds as much but doubles the remesh everywhere).
+// gives those regions more resolution (a uniformly finer base lowers the folds
+// too, man 2,821 -> 207 at 1,500 base vertices, but refines everything).
 StatusOr<Refinement> RemeshWithFewerFolds(const SurfaceContext& c, RemeshReport* report) {
   EQMESH_ASSIGN_OR_RETURN(Refinement best, RemeshMeetingFloor(c, report));
   if (c.options.base_vertices > 0) return best;
