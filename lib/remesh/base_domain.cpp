@@ -219,7 +219,7 @@ void Simplifier::InitErrorBounds(const MeshTopology& topology, const BaseDomainO
     const double bound = max_error_share * boxes[face_component[f]].Diagonal();
     for (uint32_t c : faces_[f]) max_error2_[c] = bound * bound;
   }
-  if (options.bound_scale.size() != pos_.size()) return;
+  if (options.bound_scale.empty()) return;
   for (size_t v = 0; v < pos_.size(); ++v) {
     const double scale = options.bound_scale[v];
     max_error2_[v] *= scale * scale;
@@ -970,6 +970,9 @@ StatusOr<BaseDomain> BuildBaseDomain(const Mesh& mesh, const TriangleBvh& bvh,
                                      const std::vector<uint8_t>& is_boundary, const BaseDomainOptions& options) {
   if (mesh.faces.empty()) return InvalidMesh("no faces to simplify");
   if (is_boundary.size() != mesh.positions.size()) return InternalError("boundary flags size mismatch");
+  if (!options.bound_scale.empty() && options.bound_scale.size() != mesh.positions.size()) {
+    return InternalError("bound scale size mismatch");
+  }
   Simplifier s(mesh, bvh, is_boundary, options);
   s.Run(options.target_vertices, options.progress);
   s.RaiseValenceThree();

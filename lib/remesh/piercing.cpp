@@ -6,6 +6,7 @@
 #include <cmath>
 #include <optional>
 
+#include "mesh/mesh_topology.h"
 #include "remesh/input_pleats.h"
 #include "remesh/level_domain.h"
 #include "remesh/level_refiner.h"
@@ -517,6 +518,17 @@ InputSurface::InputSurface(const Mesh& m, const TriangleBvh& b, std::vector<uint
     for (uint32_t v : m.faces[f]) normals[v] += face_normals[f];
   }
   near_pleat = FacesNearPleats(m, face_normals, face_offsets, vertex_faces, remesh_internal::kPleatMarginRings);
+  if (std::find(is_boundary.begin(), is_boundary.end(), 1) == is_boundary.end()) return;
+  const MeshTopology topology(m);
+  for (uint32_t e = 0; e < topology.num_edges(); ++e) {
+    if (topology.IsBoundaryEdge(e)) boundary_edges.push_back(topology.EdgeVertices(e));
+  }
+  const std::vector<Vec3>& x = m.positions;
+  auto lower_x = [&x](const Edge& e) { return std::min(x[e[0]].x(), x[e[1]].x()); };
+  std::sort(boundary_edges.begin(), boundary_edges.end(), [&](const Edge& e, const Edge& f) {
+    return lower_x(e) < lower_x(f) || (lower_x(e) == lower_x(f) && e < f);
+  });
+  for (const Edge& e : boundary_edges) longest_boundary_edge = std::max(longest_boundary_edge, (x[e[1]] - x[e[0]]).norm());
 }
 
 void RefineLevel(const SemiRegularHierarchy& hierarchy, int j, const InputSurface& surface,

@@ -56,6 +56,11 @@ struct InputSurface {
   std::vector<Vec3> face_normals;       // FaceCrossProducts (not unit)
   std::vector<Vec3> normals;            // area-weighted vertex normals (not unit)
   std::vector<uint8_t> near_pleat;      // per input face: FacesNearPleats
+  // Input edges with one face (its boundary curves), by the smaller x of their
+  // ends, and the longest of them: the untangler's boundary slides search them
+  // in slabs. Built once here, not per untangling (it runs after every level).
+  std::vector<Edge> boundary_edges;
+  double longest_boundary_edge = 0.0;
 
   InputSurface(const Mesh& m, const TriangleBvh& b, std::vector<uint8_t> boundary);
 };

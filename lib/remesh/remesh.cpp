@@ -262,7 +262,7 @@ struct Refinement {
 // A moved vertex's input triangle is no longer known.
 void UntangleNewLevel(const InputSurface& surface, const std::vector<uint32_t>& folded, Refinement* r) {
   r->folded_faces = folded;
-  if (!RefinedIn3d(r->hierarchy.Faces(r->levels).size(), surface.mesh->faces.size())) return;
+  if (folded.empty() || !RefinedIn3d(r->hierarchy.Faces(r->levels).size(), surface.mesh->faces.size())) return;
   const auto start = std::chrono::steady_clock::now();
   const std::vector<Vec3> before = r->positions;
   UntangleFinestLevel(r->hierarchy, surface, folded, r->stencils, &r->positions, &r->kinds, LevelUse::kPiercedFrom,

@@ -10,7 +10,6 @@
 
 #include <Eigen/Geometry>
 
-#include "mesh/mesh_topology.h"
 #include "remesh/face_incidence.h"
 #include "remesh/fan_kernel.h"
 #include "remesh/patch_flattening.h"
@@ -53,24 +52,12 @@ constexpr double kMinNormalShare = 0.90;
 // Rounds of MoveCornersOfNewFolds, each seeded with what still folds.
 constexpr int kCleanupRounds = 4;
 
-// Edges of `mesh` that only one face uses (its boundary curves), by (min, max).
-std::vector<Edge> InputBoundaryEdges(const Mesh& mesh) {
-  const MeshTopology topology(mesh);
-  std::vector<Edge> boundary;
-  for (uint32_t e = 0; e < topology.num_edges(); ++e) {
-    if (topology.IsBoundaryEdge(e)) boundary.push_back(topology.EdgeVertices(e));
-  }
-  return boundary;
-}
-
 struct Untangler {
   const std::vector<Face>& faces;
   const InputSurface& surface;
   std::vector<Vec3>& pos;
   FaceIncidence incidence;  // vertex -> finest faces
   const std::vector<VertexKind>& kinds;
-  std::vector<Edge> input_boundary;  // input edges with one face, by LowerX
-  double longest_boundary_edge = 0.0;
   double degenerate_double_area;
   // Fold tests the untangler may still make (kWorkPerFace).
   mutable size_t work_left = 0;
@@ -89,14 +76,8 @@ struct Untangler {
         surface(s),
         pos(*p),
         kinds(k),
-        input_boundary(InputBoundaryEdges(*s.mesh)),
         degenerate_double_area(DegenerateDoubleArea(*s.mesh)),
         work_left(static_cast<size_t>(kWorkPerFace * static_cast<double>(finest.size()))) {
-    const std::vector<Vec3>& x = s.mesh->positions;
-    std::sort(input_boundary.begin(), input_boundary.end(), [&](const Edge& e, const Edge& f) {
-      return LowerX(e) < LowerX(f) || (LowerX(e) == LowerX(f) && e < f);
-    });
-    for (const Edge& e : input_boundary) longest_boundary_edge = std::max(longest_boundary_edge, (x[e[1]] - x[e[0]]).norm());
     incidence = BuildFaceIncidence(faces, pos.size());
   }
 
@@ -135,7 +116,7 @@ struct Untangler {
     return s;
   }
 
-  // Smaller x of an input edge's endpoints: the key input_boundary is sorted by.
+  // Smaller x of an input edge's endpoints: the key InputSurface::boundary_edges is sorted by.
   double LowerX(const Edge& e) const {
     const std::vector<Vec3>& x = surface.mesh->positions;
     return std::min(x[e[0]].x(), x[e[1]].x());
@@ -147,11 +128,12 @@ struct Untangler {
     const std::vector<Vec3>& x = surface.mesh->positions;
     std::optional<Vec3> best;
     double best_d = reach * reach;
-    auto it = std::upper_bound(input_boundary.begin(), input_boundary.end(), target.x() + reach,
+    const std::vector<Edge>& edges = surface.boundary_edges;
+    auto it = std::upper_bound(edges.begin(), edges.end(), target.x() + reach,
                                [&](double value, const Edge& e) { return value < LowerX(e); });
-    while (it != input_boundary.begin()) {
+    while (it != edges.begin()) {
       const Edge& e = *--it;
-      if (LowerX(e) < target.x() - reach - longest_boundary_edge) break;
+      if (LowerX(e) < target.x() - reach - surface.longest_boundary_edge) break;
       const Vec3 a = x[e[0]], d = x[e[1]] - x[e[0]];
       const double len2 = d.squaredNorm();
       const double t = len2 > 0 ? std::clamp((target - a).dot(d) / len2, 0.0, 1.0) : 0.0;
