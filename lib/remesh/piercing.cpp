@@ -7,7 +7,6 @@
 #include <optional>
 
 #include "mesh/mesh_topology.h"
-#include "remesh/input_pleats.h"
 #include "remesh/level_domain.h"
 #include "remesh/level_refiner.h"
 #include "core/parallel_for.h"
@@ -43,11 +42,6 @@ constexpr size_t kMaxFineForwardChartFaces = 256;
 // they are, where 4 and 8 give them slivers (measured:
 // bench/log/2026-12-05-remesh-notebook.md).
 constexpr double kMidpointReach = 16.0;
-// Rings of input triangles around a pleat where the fold scan always searches
-// (LevelRefiner::SurelyUnfolded). With 0 the scan already decided every face of
-// the bench meshes as the full search does; 1 is a margin (dragon_vrip, whose
-// scans overlap other components: 106 faces decided otherwise with 0, 80 with 1).
-constexpr int kPleatMarginRings = 1;
 
 double Quality2d(const Vec2& a, const Vec2& b, const Vec2& c) {
   const double denom = (b - a).squaredNorm() + (c - b).squaredNorm() + (a - c).squaredNorm();
@@ -517,7 +511,6 @@ InputSurface::InputSurface(const Mesh& m, const TriangleBvh& b, std::vector<uint
   for (uint32_t f = 0; f < m.faces.size(); ++f) {
     for (uint32_t v : m.faces[f]) normals[v] += face_normals[f];
   }
-  near_pleat = FacesNearPleats(m, face_normals, face_offsets, vertex_faces, remesh_internal::kPleatMarginRings);
   if (std::find(is_boundary.begin(), is_boundary.end(), 1) == is_boundary.end()) return;
   const MeshTopology topology(m);
   for (uint32_t e = 0; e < topology.num_edges(); ++e) {

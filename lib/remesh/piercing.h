@@ -55,7 +55,6 @@ struct InputSurface {
   std::vector<uint32_t> vertex_faces;
   std::vector<Vec3> face_normals;       // FaceCrossProducts (not unit)
   std::vector<Vec3> normals;            // area-weighted vertex normals (not unit)
-  std::vector<uint8_t> near_pleat;      // per input face: FacesNearPleats
   // Input edges with one face (its boundary curves), by the smaller x of their
   // ends, and the longest of them: the untangler's boundary slides search them
   // in slabs. Built once here, not per untangling (it runs after every level).
