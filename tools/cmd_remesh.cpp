@@ -12,6 +12,7 @@
 #include "mesh/semi_regular.h"
 #include "remesh/remesh.h"
 #include "mesh/diagnose.h"
+#include "mesh/repair.h"
 #include "metrics/surface_distance.h"
 #include "remesh/quality_checks.h"
 #include "core/thread_count.h"
@@ -123,7 +124,12 @@ int RunRemesh(int argc, char** argv) {
   } else {
     report.notes.push_back("psnr not measured: " + cmp.status().message());
   }
-  auto folds = eqmesh::CountFoldsAgainstInput(finest, *mesh);
+  // Against the surface remeshed: with --repair its faces may face the other way
+  // (inward components turned outward), and the remesh follows the repaired one.
+  eqmesh::StatusOr<eqmesh::Mesh> repaired = *mesh;
+  if (repair) repaired = eqmesh::RepairForRemeshing(*mesh, nullptr);
+  auto folds = repaired.ok() ? eqmesh::CountFoldsAgainstInput(finest, *repaired)
+                             : eqmesh::StatusOr<eqmesh::FoldReport>(repaired.status());
   if (folds.ok()) {
     j["flipped_faces"] = folds->flipped_faces;
     j["degenerate_faces"] = folds->degenerate_faces;

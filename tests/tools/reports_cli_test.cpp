@@ -127,6 +127,22 @@ TEST(ReportsCli, RemeshHoldsItsDefaultFloorAndWarnsWhereItCannot) {
   EXPECT_TRUE(FileExists(unreachable));
 }
 
+// With --repair the remesher works on the repaired input, and its fold count
+// is taken against that: a sphere turned inside out is remeshed facing out,
+// which is no fold (against the file as read every face would count).
+TEST(ReportsCli, RemeshCountsFoldsAgainstTheRepairedInput) {
+  const ScratchDir dir("reports_remesh_repaired");
+  Mesh m = MakeIcosphere(3);
+  for (Face& f : m.faces) std::swap(f[1], f[2]);
+  const std::string in = dir.Path("inside_out.obj");
+  ASSERT_TRUE(WriteMesh(m, in).ok());
+  const nlohmann::json j = Json(RunTool("remesh " + in + " " + dir.Path("out.ply") + " --levels 2 --repair --json"));
+  ASSERT_FALSE(j.is_discarded());
+  EXPECT_NE(j["notes"].dump().find("turned outward"), std::string::npos) << j.dump();
+  EXPECT_GT(j["output_faces"].get<size_t>(), 0u);
+  EXPECT_EQ(j["flipped_faces"].get<size_t>(), 0u) << j.dump();
+}
+
 TEST(ReportsCli, BrokenGlbGetsOneMessageFromEveryCommand) {
   const ScratchDir dir("reports_broken");
   const std::string empty = dir.Path("empty.glb");
