@@ -442,36 +442,52 @@ size_t TightenOverFolds(const Refinement& r, std::vector<double>* scale) {
   return static_cast<size_t>(std::count(folded.begin(), folded.end(), 1));
 }
 
+// Whether `r`, a remesh tried for fewer folds, replaces `best`: it folds fewer
+// faces and, under a floor, measures at least the floor or the kept remesh,
+// whichever is lower. Records `why` in the report's notes when it does.
+bool KeepIfFewerFolds(const SurfaceContext& c, Refinement&& r, const std::string& why, Refinement* best,
+                      RemeshReport* report) {
+  if (r.folded_faces.size() >= best->folded_faces.size()) return false;
+  const bool floor = c.options.min_psnr > 0;
+  const double psnr = floor ? MeasureRemeshPsnr(c, r, report) : 0.0;
+  if (floor && psnr < std::min(c.options.min_psnr, report->psnr_db)) return false;
+  report->notes.push_back(why + ": " + std::to_string(best->folded_faces.size()) + " -> " +
+                          std::to_string(r.folded_faces.size()) + " folded faces");
+  *best = std::move(r);
+  if (floor) report->psnr_db = psnr;
+  return true;
+}
+
 // RemeshMeetingFloor, then, while the finest level still folds, up to
 // kFoldRetries remeshes at the bound it kept, each with the bound tightened
-// over the base faces whose descendants fold (TightenOverFolds, cumulative).
-// A retry is kept when it folds fewer faces and, under a floor, measures at
-// least the floor or the kept remesh, whichever is lower; the first that is
-// not ends the retries (fold counts move chaotically with the base: diplodocus
-// 117 -> 178 -> 381, dino 6 -> 15 -> 17, while cow goes 96 -> 84 -> 0 and
-// femur 132 -> 95 -> 74; bench/log/2026-12-06-level-untangle.md). Folds that survive
-// the untangling sit where a base face spans a part thinner than the finest
-// level can follow or a crease sharper than 90 degrees; a finer base there
-// gives those regions more resolution (a uniformly finer base lowers the folds
-// too, man 2,821 -> 207 at 1,500 base vertices, but refines everything).
+// over the base faces whose descendants fold (TightenOverFolds, cumulative),
+// then one with the whole bound halved. Each is kept only if KeepIfFewerFolds;
+// the first tightening that is not ends the tightenings (fold counts move
+// chaotically with the base: diplodocus 117 -> 178 -> 381, dino 6 -> 15 -> 17,
+// while cow goes 96 -> 84 -> 0 and femur 132 -> 95 -> 74;
+// bench/log/2026-12-06-level-untangle.md). Folds that survive the untangling
+// sit where a base face spans a part thinner than the finest level can follow
+// or a crease sharper than 90 degrees; a finer base there gives those regions
+// more resolution. The halving refines everything, and where the tightenings
+// left folds it removes some of them more often than not (dino 6 -> 4, skull
+// 2 -> 0, fandisk 1 -> 0, man 120 -> 117; bench/log/2026-12-06-fold-scan-exact.md).
 StatusOr<Refinement> RemeshWithFewerFolds(const SurfaceContext& c, RemeshReport* report) {
   EQMESH_ASSIGN_OR_RETURN(Refinement best, RemeshMeetingFloor(c, report));
   if (c.options.base_vertices > 0) return best;
-  const bool floor = c.options.min_psnr > 0;
   std::vector<double> scale(c.prep.surface.positions.size(), 1.0);
   for (int retry = 0; retry < kFoldRetries && !best.folded_faces.empty(); ++retry) {
     const size_t regions = TightenOverFolds(best, &scale);
     EQMESH_ASSIGN_OR_RETURN(Refinement r, RemeshSurface(c, report->base_error_share, scale, report));
-    if (r.folded_faces.size() >= best.folded_faces.size()) break;
-    const double psnr = floor ? MeasureRemeshPsnr(c, r, report) : 0.0;
-    if (floor && psnr < std::min(c.options.min_psnr, report->psnr_db)) break;
-    char note[160];
-    std::snprintf(note, sizeof(note), "base bound tightened over %zu base faces whose descendants folded: %zu -> %zu "
-                  "folded faces", regions, best.folded_faces.size(), r.folded_faces.size());
-    report->notes.push_back(note);
-    best = std::move(r);
-    if (floor) report->psnr_db = psnr;
+    const std::string why = "base bound tightened over " + std::to_string(regions) +
+                            " base faces whose descendants folded";
+    if (!KeepIfFewerFolds(c, std::move(r), why, &best, report)) break;
   }
+  if (best.folded_faces.empty()) return best;
+  const double share = report->base_error_share / 2.0;
+  EQMESH_ASSIGN_OR_RETURN(Refinement r, RemeshSurface(c, share, scale, report));
+  char why[96];
+  std::snprintf(why, sizeof(why), "base bound halved to %.3g %% where the finest level still folded", 100.0 * share);
+  if (KeepIfFewerFolds(c, std::move(r), why, &best, report)) report->base_error_share = share;
   return best;
 }
 

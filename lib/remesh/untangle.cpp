@@ -6,8 +6,8 @@
 #include <cmath>
 #include <cstring>
 #include <map>
-#include <unordered_map>
 #include <optional>
+#include <unordered_map>
 #include <utility>
 
 #include <Eigen/Geometry>
