@@ -517,11 +517,37 @@ InputSurface::InputSurface(const Mesh& m, const TriangleBvh& b, std::vector<uint
     if (topology.IsBoundaryEdge(e)) boundary_edges.push_back(topology.EdgeVertices(e));
   }
   const std::vector<Vec3>& x = m.positions;
-  auto lower_x = [&x](const Edge& e) { return std::min(x[e[0]].x(), x[e[1]].x()); };
   std::sort(boundary_edges.begin(), boundary_edges.end(), [&](const Edge& e, const Edge& f) {
-    return lower_x(e) < lower_x(f) || (lower_x(e) == lower_x(f) && e < f);
+    return LowerX(e) < LowerX(f) || (LowerX(e) == LowerX(f) && e < f);
   });
   for (const Edge& e : boundary_edges) longest_boundary_edge = std::max(longest_boundary_edge, (x[e[1]] - x[e[0]]).norm());
+}
+
+double InputSurface::LowerX(const Edge& e) const {
+  const std::vector<Vec3>& x = mesh->positions;
+  return std::min(x[e[0]].x(), x[e[1]].x());
+}
+
+std::optional<Vec3> InputSurface::ClosestBoundaryPoint(const Vec3& target, double reach) const {
+  const std::vector<Vec3>& x = mesh->positions;
+  std::optional<Vec3> best;
+  double best_d = reach * reach;
+  auto it = std::upper_bound(boundary_edges.begin(), boundary_edges.end(), target.x() + reach,
+                             [&](double value, const Edge& e) { return value < LowerX(e); });
+  while (it != boundary_edges.begin()) {
+    const Edge& e = *--it;
+    if (LowerX(e) < target.x() - reach - longest_boundary_edge) break;
+    const Vec3 a = x[e[0]], d = x[e[1]] - x[e[0]];
+    const double len2 = d.squaredNorm();
+    const double t = len2 > 0 ? std::clamp((target - a).dot(d) / len2, 0.0, 1.0) : 0.0;
+    const Vec3 p = a + t * d;
+    const double dist = (p - target).squaredNorm();
+    if (dist <= best_d) {
+      best_d = dist;
+      best = p;
+    }
+  }
+  return best;
 }
 
 void RefineLevel(const SemiRegularHierarchy& hierarchy, int j, const InputSurface& surface,

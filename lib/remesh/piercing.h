@@ -37,6 +37,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "mesh/mesh.h"
@@ -55,13 +56,21 @@ struct InputSurface {
   std::vector<uint32_t> vertex_faces;
   std::vector<Vec3> face_normals;       // FaceCrossProducts (not unit)
   std::vector<Vec3> normals;            // area-weighted vertex normals (not unit)
-  // Input edges with one face (its boundary curves), by the smaller x of their
-  // ends, and the longest of them: the untangler's boundary slides search them
-  // in slabs. Built once here, not per untangling (it runs after every level).
+  // Input edges with one face (its boundary curves), by LowerX, and the longest
+  // of them. Built once here, not per untangling (it runs after every level).
   std::vector<Edge> boundary_edges;
   double longest_boundary_edge = 0.0;
 
   InputSurface(const Mesh& m, const TriangleBvh& b, std::vector<uint8_t> boundary);
+
+  // The point of the input's boundary curves closest to `target` within
+  // `reach`, if any (the untangler's boundary slides); only the slab of
+  // boundary_edges within reach in x is scanned.
+  std::optional<Vec3> ClosestBoundaryPoint(const Vec3& target, double reach) const;
+
+ private:
+  // Smaller x of an edge's ends: the key boundary_edges is sorted by.
+  double LowerX(const Edge& e) const;
 };
 
 // Levels with at least this many faces per input face are refined in 3D: hits

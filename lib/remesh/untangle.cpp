@@ -138,37 +138,6 @@ struct Untangler {
     return s;
   }
 
-  // Smaller x of an input edge's endpoints: the key InputSurface::boundary_edges is sorted by.
-  double LowerX(const Edge& e) const {
-    const std::vector<Vec3>& x = surface.mesh->positions;
-    return std::min(x[e[0]].x(), x[e[1]].x());
-  }
-
-  // Closest point of the input's boundary curves to `target` within `reach`
-  // (the edges are sorted by their lower x, so only a slab is scanned).
-  std::optional<Vec3> ProjectBoundary(const Vec3& target, double reach) const {
-    const std::vector<Vec3>& x = surface.mesh->positions;
-    std::optional<Vec3> best;
-    double best_d = reach * reach;
-    const std::vector<Edge>& edges = surface.boundary_edges;
-    auto it = std::upper_bound(edges.begin(), edges.end(), target.x() + reach,
-                               [&](double value, const Edge& e) { return value < LowerX(e); });
-    while (it != edges.begin()) {
-      const Edge& e = *--it;
-      if (LowerX(e) < target.x() - reach - surface.longest_boundary_edge) break;
-      const Vec3 a = x[e[0]], d = x[e[1]] - x[e[0]];
-      const double len2 = d.squaredNorm();
-      const double t = len2 > 0 ? std::clamp((target - a).dot(d) / len2, 0.0, 1.0) : 0.0;
-      const Vec3 p = a + t * d;
-      const double dist = (p - target).squaredNorm();
-      if (dist <= best_d) {
-        best_d = dist;
-        best = p;
-      }
-    }
-    return best;
-  }
-
   // A boundary vertex slides between its boundary neighbours.
   Vec3 BoundaryNeighbourMidpoint(uint32_t v) const {
     Vec3 sum = Vec3::Zero();
@@ -230,7 +199,7 @@ struct Untangler {
     const Vec3 target = (1.0 - t) * pos[v] + t * aim;
     if (kinds[v] == VertexKind::kBoundary) {
       if (off_surface) return std::nullopt;
-      return ProjectBoundary(target, FanRadius(v));
+      return surface.ClosestBoundaryPoint(target, FanRadius(v));
     }
     if (off_surface) return target;
     const ClosestPointResult cp = ProjectFacing(target, facing, FanRadius(v));
