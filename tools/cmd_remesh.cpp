@@ -2,6 +2,7 @@
 // (finest level written as a plain mesh). Thin layer over Remesh() (lib/remesh).
 #include <chrono>
 #include <cstdio>
+#include <optional>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -65,16 +66,27 @@ int RunRemesh(int argc, char** argv) {
   eqmesh::ReadReport read_report;
   auto mesh = eqmesh::ReadMesh(in_path, &read_report);
   if (!mesh.ok()) return eqmesh::cli::Fail(kName, mesh.status().message());
+  // Repaired here rather than by Remesh(): the fold count below is taken against
+  // the surface remeshed (with --repair inward components face out), and one
+  // repair serves both.
+  std::optional<eqmesh::Mesh> repaired;
+  eqmesh::RepairReport repair_report;
+  if (repair) {
+    auto r = eqmesh::RepairForRemeshing(*mesh, &repair_report);
+    if (!r.ok()) return eqmesh::cli::Fail(kName, in_path + ": " + r.status().message());
+    repaired = std::move(r).value();
+  }
+  const eqmesh::Mesh& surface = repaired ? *repaired : *mesh;
   eqmesh::RemeshOptions options;
   options.levels = levels;
   options.base_vertices = base_vertices;
-  options.repair = repair;
   options.min_psnr = min_psnr;
   options.progress = eqmesh::cli::TerminalProgress(json);
   eqmesh::RemeshReport report;
-  auto remeshed = eqmesh::Remesh(*mesh, options, &report);
+  auto remeshed = eqmesh::Remesh(surface, options, &report);
   eqmesh::cli::ClearTerminalProgress(options.progress);
   if (!remeshed.ok()) return eqmesh::cli::Fail(kName, in_path + ": " + remeshed.status().message());
+  if (!repair_report.Unchanged()) report.notes.insert(report.notes.begin(), "repair: " + repair_report.Summary());
   if (report.psnr_db > 0 && report.psnr_db < options.min_psnr) {
     // Still written: the best remesh found is worth having, but not silently.
     std::fprintf(stderr,
@@ -124,12 +136,7 @@ int RunRemesh(int argc, char** argv) {
   } else {
     report.notes.push_back("psnr not measured: " + cmp.status().message());
   }
-  // Against the surface remeshed: with --repair its faces may face the other way
-  // (inward components turned outward), and the remesh follows the repaired one.
-  eqmesh::StatusOr<eqmesh::Mesh> repaired = *mesh;
-  if (repair) repaired = eqmesh::RepairForRemeshing(*mesh, nullptr);
-  auto folds = repaired.ok() ? eqmesh::CountFoldsAgainstInput(finest, *repaired)
-                             : eqmesh::StatusOr<eqmesh::FoldReport>(repaired.status());
+  auto folds = eqmesh::CountFoldsAgainstInput(finest, surface);
   if (folds.ok()) {
     j["flipped_faces"] = folds->flipped_faces;
     j["degenerate_faces"] = folds->degenerate_faces;
