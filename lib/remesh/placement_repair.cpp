@@ -74,10 +74,9 @@ uint32_t LevelRefiner::FineFace(uint32_t v) const {
 // corners on one input triangle, and then the face lies in that triangle, its
 // centroid too: the search would find that triangle (short of a tie within
 // rounding where another triangle touches it), so the face folds exactly when
-// it faces against it. Only the unfolded case is answered here. Any weaker
-// test hides folds: taking the face as unfolded when each corner's own
-// triangle agrees with it within 60 degrees missed 7 of bones' 17 finest folds
-// and 44 of man's 197, which then no untangling saw.
+// it faces against it. Only the unfolded case is answered here: a face taken
+// as unfolded on a guess is a fold no untangling sees, nor the fold retries'
+// count (bench/log/2026-12-06-fold-scan-exact.md).
 bool LevelRefiner::SurelyUnfolded(const Face& t, const Vec3& normal) const {
   if (!fine_) return false;
   const uint32_t f = FineFace(t[0]);
