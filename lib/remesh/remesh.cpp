@@ -386,11 +386,6 @@ StatusOr<Refinement> RemeshSurface(const SurfaceContext& c, double error_share, 
   return r;
 }
 
-// RemeshSurface at the automatic base bound; when the options ask for a PSNR
-// floor and the remesh measures below it, again with the bound halved (up to
-// kFloorRetries times), keeping the best. Where the shape has detail below the
-// 2 % bound (fingers, toes, claws) the remesh loses it at every level; a floor
-// that asks for that detail pays for a finer base only there.
 // The floor's meter on a refinement; adds its seconds to the report.
 double MeasureRemeshPsnr(const SurfaceContext& c, const Refinement& r, RemeshReport* report) {
   const auto measuring = std::chrono::steady_clock::now();
@@ -399,6 +394,11 @@ double MeasureRemeshPsnr(const SurfaceContext& c, const Refinement& r, RemeshRep
   return psnr;
 }
 
+// RemeshSurface at the automatic base bound; when the options ask for a PSNR
+// floor and the remesh measures below it, again with the bound halved (up to
+// kFloorRetries times), keeping the best. Where the shape has detail below the
+// 2 % bound (fingers, toes, claws) the remesh loses it at every level; a floor
+// that asks for that detail pays for a finer base only there.
 StatusOr<Refinement> RemeshMeetingFloor(const SurfaceContext& c, RemeshReport* report) {
   const bool floor = c.options.min_psnr > 0 && c.options.base_vertices <= 0;
   double share = kBaseErrorShare;
