@@ -138,6 +138,7 @@ class Simplifier {
 
   const std::vector<Vec3>& pos_;
   const TriangleBvh& bvh_;
+  std::vector<uint32_t> face_part_;  // FacePartsForFoldTest
   const Mesh& input_;
   const std::vector<uint8_t>& boundary_;
   std::vector<Face> faces_;
@@ -197,6 +198,7 @@ Simplifier::Simplifier(const Mesh& mesh, const TriangleBvh& bvh, const std::vect
   const MeshTopology topology(mesh);
   InitLoops(topology);
   InitErrorBounds(topology, options);
+  if (topology.num_components() > 1) face_part_ = topology.FaceComponents();
 }
 
 // Each component is bounded by its own diagonal, so a small part beside a large
@@ -529,7 +531,7 @@ bool Simplifier::GeometryAllows(uint32_t v, size_t p, const Ring& ring, const st
 // from the input at the closest point of its centroid. A folded base face
 // seeds folds and unconverged patches at every level below it.
 bool Simplifier::FacesAwayFromInput(const Vec3& a, const Vec3& b, const Vec3& c) const {
-  return eqmesh::FacesAwayFromInput(bvh_, input_, a, b, c);
+  return eqmesh::FacesAwayFromInput(bvh_, input_, face_part_, a, b, c);
 }
 
 bool Simplifier::TryCollapse(uint32_t v, uint32_t u, const Ring& ring) {

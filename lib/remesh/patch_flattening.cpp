@@ -73,7 +73,7 @@ class PatchFlattener {
   // The remesh's fold test (quality_checks.h) on face f of `level`; degenerate counts.
   bool Folded(int level, uint32_t f) const {
     const Face& t = h_.Faces(level)[f];
-    return FoldedOrDegenerate(*s_.bvh, *s_.mesh, pos_[t[0]], pos_[t[1]], pos_[t[2]], tiny_);
+    return FoldedOrDegenerate(*s_.bvh, *s_.mesh, s_.face_part, pos_[t[0]], pos_[t[1]], pos_[t[2]], tiny_);
   }
 
   // Vertices created inside face p of `level` or on its edges, coarse to fine,

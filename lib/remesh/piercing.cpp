@@ -103,11 +103,13 @@ std::vector<EdgeChoice> LevelRefiner::NormalCandidates(uint32_t k, Chart* chart,
             [reach](const RayHit& x, const RayHit& y) { return std::abs(x.t - reach) < std::abs(y.t - reach); });
   std::vector<EdgeChoice> out;
   if (!hits.empty() && !fine_) chart->Reset(sides.left);
+  const uint32_t part = fine_ ? EdgePart(k) : kAnyPart;
   for (const RayHit& hit : hits) {
     if (out.size() >= limit) break;
     // In 3D the diamond test cannot tell a thin part's two sides apart (both
-    // project into it): there the input must face the way the prediction does.
-    if (fine_ && !FacesAlong(hit.face, n)) continue;
+    // project into it): there the input must face the way the prediction does,
+    // and a part of the input that passes through the diamond is not this one.
+    if (fine_ && (!FacesAlong(hit.face, n) || !OnPart(hit.face, part))) continue;
     EdgeChoice c;
     c.position = p + (hit.t - reach) * n;
     c.kind = VertexKind::kNormal;
@@ -208,25 +210,44 @@ Vec3 LevelRefiner::FineMidpoint(uint32_t k, uint32_t* on_face) const {
   const Vec3 m = 0.5 * (pos_[e[0]] + pos_[e[1]]);
   const Vec3& n = frames_[k].normal;
   const double reach = 0.5 * (pos_[e[0]] - pos_[e[1]]).norm();
-  const std::optional<RayHit> hit = NearestHit(m, n, reach);
+  const uint32_t part = EdgePart(k);
+  const std::optional<RayHit> hit = NearestHit(m, n, reach, part);
   if (hit) {
     *on_face = hit->face;
     return m + hit->t * n;
   }
-  const ClosestPointResult cp = s_.bvh->ClosestPoint(m);
+  const ClosestPointResult cp = part == kAnyPart ? s_.bvh->ClosestPoint(m)
+                                                 : s_.bvh->ClosestPointFiltered(m, [&](uint32_t f) { return OnPart(f, part); });
   *on_face = cp.face;
   return cp.found() ? cp.point : m;
 }
 
-std::optional<RayHit> LevelRefiner::NearestHit(const Vec3& p, const Vec3& n, double reach) const {
+// The hit of the segment p +- reach * n closest to p, on `part` (kAnyPart: anywhere).
+std::optional<RayHit> LevelRefiner::NearestHit(const Vec3& p, const Vec3& n, double reach, uint32_t part) const {
   std::vector<RayHit> hits;
   s_.bvh->RayAllHits(p - reach * n, n, 0.0, 2.0 * reach, &hits);
   std::optional<RayHit> best;
   for (RayHit h : hits) {
+    if (!OnPart(h.face, part)) continue;
     h.t -= reach;
     if (!best || std::abs(h.t) < std::abs(best->t)) best = h;
   }
   return best;
+}
+
+// The input part (InputSurface::face_part) under edge k's ends, kAnyPart when
+// the input is one part or neither end's input triangle is known. The remesh of
+// one part must not land on another that touches or passes through it.
+uint32_t LevelRefiner::EdgePart(uint32_t k) const {
+  if (s_.face_part.empty()) return kAnyPart;
+  for (uint32_t v : h_.OddEdge(j_, k)) {
+    if (on_face_[v] != kNoFace) return s_.face_part[on_face_[v]];
+  }
+  return kAnyPart;
+}
+
+bool LevelRefiner::OnPart(uint32_t input_face, uint32_t part) const {
+  return part == kAnyPart || s_.face_part[input_face] == part;
 }
 
 bool LevelRefiner::FacesAlong(uint32_t input_face, const Vec3& n) const {
@@ -507,6 +528,7 @@ InputSurface::InputSurface(const Mesh& m, const TriangleBvh& b, std::vector<uint
     for (uint32_t v : m.faces[f]) vertex_faces[fill[v]++] = f;
   }
   face_normals = FaceCrossProducts(m);
+  face_part = FacePartsForFoldTest(m);
   normals.assign(m.positions.size(), Vec3::Zero());
   for (uint32_t f = 0; f < m.faces.size(); ++f) {
     for (uint32_t v : m.faces[f]) normals[v] += face_normals[f];

@@ -56,6 +56,7 @@ struct InputSurface {
   std::vector<uint32_t> vertex_faces;
   std::vector<Vec3> face_normals;       // FaceCrossProducts (not unit)
   std::vector<Vec3> normals;            // area-weighted vertex normals (not unit)
+  std::vector<uint32_t> face_part;      // FacePartsForFoldTest (empty: one part)
   // Input edges with one face (its boundary curves), by LowerX, and the longest
   // of them. Built once here, not per untangling (it runs after every level).
   std::vector<Edge> boundary_edges;

@@ -1,10 +1,13 @@
 // Checks of a remesh against its input, for `eqmesh remesh --json` and the
 // bench: folded faces (normal opposed to the input's at the closest point of
-// the face centroid) and degenerate faces (zero area at the input's scale).
+// the face centroid, on the part the face lies on) and degenerate faces (zero
+// area at the input's scale).
 #pragma once
 
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "core/status.h"
@@ -45,17 +48,30 @@ double DegenerateDoubleArea(const Mesh& input);
 
 class TriangleBvh;
 
+// The part (connected component) of each input face, for the fold test; empty
+// when the input is one part, which then takes the plain test.
+std::vector<uint32_t> FacePartsForFoldTest(const Mesh& input);
+
+// "No particular part", where a part of the input is asked for.
+inline constexpr uint32_t kAnyPart = std::numeric_limits<uint32_t>::max();
+
 // The fold test behind CountFoldsAgainstInput, for one triangle (a, b, c): its
 // normal is opposed to that of the input face closest to its centroid. Adds
 // twice the triangle's area times that squared distance to *error when given.
 // Degenerate triangles are not folded (CountFoldsAgainstInput counts them apart).
-bool FacesAwayFromInput(const TriangleBvh& bvh, const Mesh& input, const Vec3& a, const Vec3& b, const Vec3& c,
-                        double* error = nullptr);
+// `face_part` (FacePartsForFoldTest): with several parts, the closest face is
+// taken from the part under two or three of the corners (any part when all
+// three differ). Parts that touch or interpenetrate (bones at a joint) put one
+// part's faces nearest the centroids of another's remesh faces, facing the
+// other way, and the plain test would call those faces folded.
+bool FacesAwayFromInput(const TriangleBvh& bvh, const Mesh& input, const std::vector<uint32_t>& face_part,
+                        const Vec3& a, const Vec3& b, const Vec3& c, double* error = nullptr);
 
 // What the fold repairs remove: a degenerate triangle (twice its area at most
 // `degenerate_double_area`, see DegenerateDoubleArea) or one that faces away.
-bool FoldedOrDegenerate(const TriangleBvh& bvh, const Mesh& input, const Vec3& a, const Vec3& b, const Vec3& c,
-                        double degenerate_double_area, double* error = nullptr);
+bool FoldedOrDegenerate(const TriangleBvh& bvh, const Mesh& input, const std::vector<uint32_t>& face_part,
+                        const Vec3& a, const Vec3& b, const Vec3& c, double degenerate_double_area,
+                        double* error = nullptr);
 
 // The odd, non-boundary vertices of a remesh, and how many of them are normal.
 struct NormalCount {

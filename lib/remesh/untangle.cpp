@@ -103,7 +103,7 @@ struct Untangler {
     if (it == tested.end() || std::memcmp(it->second.corners.data(), corners.data(), sizeof corners) != 0) {
       double e = 0.0;
       // A degenerate face is as bad as a folded one (the bench counts both).
-      const bool folded = FoldedOrDegenerate(*surface.bvh, *surface.mesh, corners[0], corners[1], corners[2],
+      const bool folded = FoldedOrDegenerate(*surface.bvh, *surface.mesh, surface.face_part, corners[0], corners[1], corners[2],
                                              degenerate_double_area, &e);
       it = tested.insert_or_assign(f, FoldTest{corners, folded, e}).first;
     }

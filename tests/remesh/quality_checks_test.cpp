@@ -1,9 +1,11 @@
 // Triangle quality and the sliver count behind `eqmesh remesh --json`'s
-// sliver_faces and the placement repair's shape score.
+// sliver_faces and the placement repair's shape score; the fold test on inputs
+// of several parts.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
+#include "mesh/triangle_bvh.h"
 #include "remesh/quality_checks.h"
 
 namespace eqmesh {
@@ -38,6 +40,48 @@ TEST(CountSlivers, CountsFacesBelowTheSliverQuality) {
   m.faces.push_back({3, 1, 0});
   EXPECT_EQ(CountSlivers(m), 2u);
   EXPECT_EQ(CountSlivers(Mesh()), 0u);
+}
+
+// Part A: a roof over the y axis (two slopes meeting at a ridge at z = 0.5),
+// facing up. Part B: a plate at z = 0.3 under the ridge, facing down, as where
+// two parts of an asset interpenetrate.
+Mesh RoofWithPlateUnderItsRidge() {
+  Mesh m;
+  m.positions = {Vec3(-1, -1, 0),     Vec3(-1, 1, 0),     Vec3(0, -1, 0.5),  Vec3(0, 1, 0.5),
+                 Vec3(1, -1, 0),      Vec3(1, 1, 0),      Vec3(-0.1, -0.5, 0.3), Vec3(0.1, -0.5, 0.3),
+                 Vec3(0.1, 0.5, 0.3), Vec3(-0.1, 0.5, 0.3)};
+  m.faces = {{0, 2, 3}, {0, 3, 1}, {2, 4, 5}, {2, 5, 3},  // roof
+             {6, 8, 7}, {6, 9, 8}};                       // plate
+  return m;
+}
+
+TEST(FacesAwayFromInput, JudgesAFaceAgainstThePartUnderItsCorners) {
+  const Mesh input = RoofWithPlateUnderItsRidge();
+  auto bvh = TriangleBvh::Build(input);
+  ASSERT_TRUE(bvh.ok());
+  const std::vector<uint32_t> parts = FacePartsForFoldTest(input);
+  ASSERT_EQ(parts.size(), input.faces.size());
+  EXPECT_NE(parts[0], parts[4]);
+  // Corners on the roof (two on the slopes, one on the ridge), facing up like
+  // it; its centroid (z = 1/3) is nearer the plate (z = 0.3) than the slopes.
+  const Vec3 a(-0.5, -0.2, 0.25), b(0.5, -0.2, 0.25), c(0, 0.3, 0.5);
+  ASSERT_GT((b - a).cross(c - a).z(), 0.0);
+  EXPECT_TRUE(FacesAwayFromInput(*bvh, input, {}, a, b, c));  // judged against the plate
+  EXPECT_FALSE(FacesAwayFromInput(*bvh, input, parts, a, b, c));
+  EXPECT_TRUE(FacesAwayFromInput(*bvh, input, parts, a, c, b));  // turned over, it folds on its own part
+  Mesh remesh;
+  remesh.positions = {a, b, c};
+  remesh.faces = {{0, 1, 2}};
+  const StatusOr<FoldReport> folds = CountFoldsAgainstInput(remesh, input);
+  ASSERT_TRUE(folds.ok());
+  EXPECT_EQ(folds->flipped_faces, 0u);
+}
+
+TEST(FacePartsForFoldTest, IsEmptyForAnInputOfOnePart) {
+  Mesh roof = RoofWithPlateUnderItsRidge();
+  roof.faces.resize(4);
+  roof.positions.resize(6);
+  EXPECT_TRUE(FacePartsForFoldTest(roof).empty());
 }
 
 }  // namespace

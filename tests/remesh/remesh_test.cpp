@@ -53,6 +53,64 @@ TEST(Remesh, IcosphereIsNormalAccurateAndGenusZero) {
   EXPECT_EQ(testing::CountFlips(finest, input).flipped, 0u);
 }
 
+// The root of each vertex's connected part of `m` (union-find over its faces).
+std::vector<uint32_t> ConnectedPartRoots(const Mesh& m) {
+  std::vector<uint32_t> root(m.positions.size());
+  for (uint32_t v = 0; v < root.size(); ++v) root[v] = v;
+  const auto find = [&](uint32_t v) {
+    while (root[v] != v) v = root[v] = root[root[v]];
+    return v;
+  };
+  for (const Face& f : m.faces) {
+    root[find(f[1])] = find(f[0]);
+    root[find(f[2])] = find(f[0]);
+  }
+  for (uint32_t v = 0; v < root.size(); ++v) root[v] = find(v);
+  return root;
+}
+
+// Two spheres passing through each other at a shallow angle, as parts of an
+// asset often do: around the intersection curve the other sphere lies within a
+// piercing's reach and nearer some face centroids than the part's own surface.
+// Each part's remesh still covers its own sphere and faces out of it.
+TEST(Remesh, InterpenetratingPartsEachRemeshOntoTheirOwnSurface) {
+  const Vec3 centre_b(0.05, 0.0, 0.0);
+  const double radius_b = 0.98;
+  Mesh input = testing::MakeIcosphere(3);
+  const Mesh b = testing::MakeIcosphere(3, radius_b);
+  const uint32_t offset = static_cast<uint32_t>(input.positions.size());
+  for (const Vec3& p : b.positions) input.positions.push_back(p + centre_b);
+  for (const Face& f : b.faces) input.faces.push_back({f[0] + offset, f[1] + offset, f[2] + offset});
+  RemeshReport report;
+  auto result = Remesh(input, RemeshOptions(), &report);
+  ASSERT_TRUE(result.ok()) << result.status().ToString();
+  const Mesh finest = ExtractLevel(*result, report.levels);
+  // Every input vertex is covered by its part's remesh (a part remeshed partly
+  // onto the other leaves its own surface 0.006 away there).
+  EXPECT_LT(testing::MaxVertexDistance(input, finest), 0.003);
+  // Which sphere each part of the remesh covers: the one most of its vertices
+  // are nearer to; each face faces out of it.
+  const std::vector<uint32_t> root = ConnectedPartRoots(finest);
+  std::map<uint32_t, int> votes_b;
+  for (uint32_t v = 0; v < root.size(); ++v) {
+    const Vec3& p = finest.positions[v];
+    votes_b[root[v]] += std::abs((p - centre_b).norm() - radius_b) < std::abs(p.norm() - 1.0) ? 1 : -1;
+  }
+  ASSERT_EQ(votes_b.size(), 2u);
+  ASSERT_NE(votes_b.begin()->second > 0, votes_b.rbegin()->second > 0);
+  for (const Face& f : finest.faces) {
+    const Vec3& p0 = finest.positions[f[0]];
+    const Vec3& p1 = finest.positions[f[1]];
+    const Vec3& p2 = finest.positions[f[2]];
+    const Vec3 centre = votes_b[root[f[0]]] > 0 ? centre_b : Vec3::Zero();
+    EXPECT_GT((p1 - p0).cross(p2 - p0).dot((p0 + p1 + p2) / 3.0 - centre), 0.0);
+  }
+  const StatusOr<FoldReport> folds = CountFoldsAgainstInput(finest, input);
+  ASSERT_TRUE(folds.ok());
+  EXPECT_EQ(folds->flipped_faces, 0u);
+  EXPECT_EQ(folds->degenerate_faces, 0u);
+}
+
 // The twelve valence-5 vertices of an icosphere pulled out into spikes: the
 // base keeps the tips, none of them at valence 3 (the base domain flips an edge
 // opposite such a tip: on the bench scans they seeded the folds no untangling
