@@ -15,10 +15,12 @@
 // 2x, or to a floor (centroids 5 % of an edge off the input), since a fold lying
 // flat in one input triangle has error 0. Boundary vertices slide along the
 // input's boundary curves; base vertices never move. Corners of every level may
-// move, as deep as keeps the normal share >= 0.90: each depth is tried from the
-// remesh as it came, all levels first; the finest level alone comes last, its
-// moves stopped where the share would reach 0.90. A remesh already below 0.90
-// (dragon_vrip's) gets its last two levels untangled freely. Moves are free in
+// move, as deep as keeps the normal share >= 0.90 (0.80 in the final pass: a
+// fold it leaves stays in the remesh, while a non-normal vertex costs only two
+// more coefficients): each depth is tried from the remesh as it came, all levels
+// first; the finest level alone comes last, its moves stopped where the share
+// would reach the floor. A remesh already below the floor (dragon_vrip's) gets
+// its last two levels untangled freely. Moves are free in
 // 3D; moved vertices, and every later vertex whose butterfly prediction or frame
 // they enter, become non-normal. What still folds then gets its coarse patch
 // refilled (patch_flattening.h), unless that takes the normal share below 0.90.
