@@ -21,7 +21,6 @@ struct FoldProbeInput {
   Mesh input;
   SemiRegularMesh srm;
   TriangleBvh bvh;
-  std::vector<uint32_t> face_part;           // FacePartsForFoldTest(input)
   int level = 0;
   std::vector<Vec3> pos;                     // the remesh's positions, free to move
   std::vector<std::vector<uint32_t>> inc;    // vertex -> faces of `level`
@@ -42,7 +41,7 @@ struct FoldProbeInput {
 
   bool Folded(uint32_t f) const {
     const Face& t = faces()[f];
-    return FacesAwayFromInput(bvh, input, face_part, pos[t[0]], pos[t[1]], pos[t[2]]);
+    return FacesAwayFromInput(bvh, input, {}, kAnyPart, pos[t[0]], pos[t[1]], pos[t[2]]);
   }
 
   // Input face g's normal, scaled by twice its area.
@@ -64,8 +63,7 @@ inline std::optional<FoldProbeInput> LoadFoldProbeInput(const char* input_path, 
   if (!input.ok() || !srm.ok()) return std::nullopt;
   auto bvh = TriangleBvh::Build(*input);
   if (!bvh.ok()) return std::nullopt;
-  std::vector<uint32_t> face_part = FacePartsForFoldTest(*input);
-  FoldProbeInput p{std::move(*input), std::move(*srm), std::move(*bvh), std::move(face_part), 0, {}, {}};
+  FoldProbeInput p{std::move(*input), std::move(*srm), std::move(*bvh), 0, {}, {}};
   p.pos = p.srm.positions;
   p.UseLevel(p.srm.hierarchy.levels());
   return p;

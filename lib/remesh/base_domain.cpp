@@ -124,7 +124,7 @@ class Simplifier {
   double AngleSum(uint32_t v) const;
   bool TopologyAllows(uint32_t v, size_t p, const Ring& ring) const;
   bool GeometryAllows(uint32_t v, size_t p, const Ring& ring, const std::vector<Vec2>& z);
-  bool FacesAwayFromInput(const Vec3& a, const Vec3& b, const Vec3& c) const;
+  bool FacesAwayFromInput(uint32_t corner, const Vec3& b, const Vec3& c) const;
   void Apply(uint32_t v, size_t p, const Ring& ring, const std::vector<Vec2>& z);
   void GatherStarItems(uint32_t v, const Ring& ring, const std::vector<Vec2>& z);
   void CollapseStarFaces(uint32_t v, uint32_t u, const Ring& ring);
@@ -138,7 +138,8 @@ class Simplifier {
 
   const std::vector<Vec3>& pos_;
   const TriangleBvh& bvh_;
-  std::vector<uint32_t> face_part_;  // FacePartsForFoldTest
+  std::vector<uint32_t> face_part_;    // FacePartsForFoldTest
+  std::vector<uint32_t> vertex_part_;  // the part of each vertex (empty: one part)
   const Mesh& input_;
   const std::vector<uint8_t>& boundary_;
   std::vector<Face> faces_;
@@ -198,7 +199,13 @@ Simplifier::Simplifier(const Mesh& mesh, const TriangleBvh& bvh, const std::vect
   const MeshTopology topology(mesh);
   InitLoops(topology);
   InitErrorBounds(topology, options);
-  if (topology.num_components() > 1) face_part_ = topology.FaceComponents();
+  if (topology.num_components() > 1) {
+    face_part_ = topology.FaceComponents();
+    vertex_part_.assign(n, kAnyPart);
+    for (uint32_t f = 0; f < faces_.size(); ++f) {
+      for (uint32_t c : faces_[f]) vertex_part_[c] = face_part_[f];
+    }
+  }
 }
 
 // Each component is bounded by its own diagonal, so a small part beside a large
@@ -521,17 +528,19 @@ bool Simplifier::GeometryAllows(uint32_t v, size_t p, const Ring& ring, const st
   away.assign(wedge_starts.size(), 0);
   const auto test = [&](size_t i, int) {
     const size_t m = wedge_starts[i];
-    away[i] = FacesAwayFromInput(pos_[u], pos_[ring.verts[m]], pos_[ring.verts[(m + 1) % d]]) ? 1 : 0;
+    away[i] = FacesAwayFromInput(u, pos_[ring.verts[m]], pos_[ring.verts[(m + 1) % d]]) ? 1 : 0;
   };
   team_->Run(wedge_starts.size(), test);
   return std::none_of(away.begin(), away.end(), [](uint8_t a) { return a != 0; });
 }
 
-// The remesh's fold test (quality_checks.h) on a base triangle: it faces away
-// from the input at the closest point of its centroid. A folded base face
-// seeds folds and unconverged patches at every level below it.
-bool Simplifier::FacesAwayFromInput(const Vec3& a, const Vec3& b, const Vec3& c) const {
-  return eqmesh::FacesAwayFromInput(bvh_, input_, face_part_, a, b, c);
+// The remesh's fold test (quality_checks.h) on the base triangle (corner, b, c),
+// against the input part `corner` belongs to: it faces away from it at the
+// closest point of its centroid. A folded base face seeds folds and
+// unconverged patches at every level below it.
+bool Simplifier::FacesAwayFromInput(uint32_t corner, const Vec3& b, const Vec3& c) const {
+  const uint32_t part = vertex_part_.empty() ? kAnyPart : vertex_part_[corner];
+  return eqmesh::FacesAwayFromInput(bvh_, input_, face_part_, part, pos_[corner], b, c);
 }
 
 bool Simplifier::TryCollapse(uint32_t v, uint32_t u, const Ring& ring) {
@@ -811,7 +820,7 @@ bool Simplifier::FlipValid(const Flip& k, double* error) const {
     const Vec3 &p0 = pos_[next[i][0]], &p1 = pos_[next[i][1]], &p2 = pos_[next[i][2]];
     const Vec3 n = (p1 - p0).cross(p2 - p0);
     if (n.dot(n_old) < kMinNormalCos * n.norm() * n_old.norm()) return false;
-    if (n.dot(facing[i]) < 0.0 || FacesAwayFromInput(p0, p1, p2)) return false;
+    if (n.dot(facing[i]) < 0.0 || FacesAwayFromInput(next[i][0], p1, p2)) return false;
     worst = std::min(worst, TriangleQuality(p0, p1, p2));
   }
   *error = error_after;

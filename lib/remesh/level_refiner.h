@@ -31,9 +31,9 @@ struct EdgeChoice {
 
 class LevelRefiner {
  public:
-  LevelRefiner(const SemiRegularHierarchy& h, int j, const InputSurface& s,
+  LevelRefiner(const SemiRegularHierarchy& h, int j, const InputSurface& s, const RemeshParts& parts,
                std::vector<Vec3>* positions, const std::vector<uint32_t>& on_faces, std::vector<ParamPoint>* params)
-      : h_(h), j_(j), s_(s), dom_(h, j), pos_(*positions), on_face_(on_faces), params_(*params) {
+      : h_(h), j_(j), s_(s), parts_(parts), dom_(h, j), pos_(*positions), on_face_(on_faces), params_(*params) {
     fine_ = RefinedIn3d(dom_.faces().size(), s.mesh->faces.size());
   }
 
@@ -100,6 +100,7 @@ class LevelRefiner {
   const SemiRegularHierarchy& h_;
   const int j_;
   const InputSurface& s_;
+  const RemeshParts& parts_;
   const LevelDomain dom_;
   const std::vector<Vec3>& pos_;
   const std::vector<uint32_t>& on_face_;  // of pos_

@@ -32,10 +32,12 @@ struct PatchVertex {
 
 class PatchFlattener {
  public:
-  PatchFlattener(const SemiRegularHierarchy& h, const InputSurface& s, const std::vector<VertexKind>& kinds,
-                 const FaceIncidence& finest_faces, StencilCache* stencils, std::vector<Vec3>* pos)
+  PatchFlattener(const SemiRegularHierarchy& h, const InputSurface& s, const RemeshParts& parts,
+                 const std::vector<VertexKind>& kinds, const FaceIncidence& finest_faces, StencilCache* stencils,
+                 std::vector<Vec3>* pos)
       : h_(h),
         s_(s),
+        parts_(parts),
         kinds_(kinds),
         pos_(*pos),
         tiny_(DegenerateDoubleArea(*s.mesh)),
@@ -73,7 +75,8 @@ class PatchFlattener {
   // The remesh's fold test (quality_checks.h) on face f of `level`; degenerate counts.
   bool Folded(int level, uint32_t f) const {
     const Face& t = h_.Faces(level)[f];
-    return FoldedOrDegenerate(*s_.bvh, *s_.mesh, s_.face_part, pos_[t[0]], pos_[t[1]], pos_[t[2]], tiny_);
+    return FoldedOrDegenerate(*s_.bvh, *s_.mesh, s_.face_part, parts_.Of(f, level), pos_[t[0]], pos_[t[1]],
+                              pos_[t[2]], tiny_);
   }
 
   // Vertices created inside face p of `level` or on its edges, coarse to fine,
@@ -175,6 +178,7 @@ class PatchFlattener {
 
   const SemiRegularHierarchy& h_;
   const InputSurface& s_;
+  const RemeshParts& parts_;
   const std::vector<VertexKind>& kinds_;
   std::vector<Vec3>& pos_;
   double tiny_;
@@ -186,10 +190,10 @@ class PatchFlattener {
 }  // namespace
 
 std::vector<uint8_t> FlattenFoldedPatches(const SemiRegularHierarchy& hierarchy, const InputSurface& surface,
-                                          const std::vector<VertexKind>& kinds,
+                                          const RemeshParts& parts, const std::vector<VertexKind>& kinds,
                                           const std::vector<uint32_t>& candidates, const FaceIncidence& finest_faces,
                                           StencilCache* stencils, std::vector<Vec3>* positions) {
-  PatchFlattener flattener(hierarchy, surface, kinds, finest_faces, stencils, positions);
+  PatchFlattener flattener(hierarchy, surface, parts, kinds, finest_faces, stencils, positions);
   flattener.Repair(candidates);
   return flattener.TakeMoved();
 }

@@ -36,7 +36,7 @@ namespace eqmesh {
 // Moves vertices of `positions` (all levels, finest-level numbering) and
 // returns which vertices moved.
 std::vector<uint8_t> FlattenFoldedPatches(const SemiRegularHierarchy& hierarchy, const InputSurface& surface,
-                                          const std::vector<VertexKind>& kinds,
+                                          const RemeshParts& parts, const std::vector<VertexKind>& kinds,
                                           const std::vector<uint32_t>& candidates, const FaceIncidence& finest_faces,
                                           StencilCache* stencils, std::vector<Vec3>* positions);
 

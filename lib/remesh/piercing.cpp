@@ -235,15 +235,11 @@ std::optional<RayHit> LevelRefiner::NearestHit(const Vec3& p, const Vec3& n, dou
   return best;
 }
 
-// The input part (InputSurface::face_part) under edge k's ends, kAnyPart when
-// the input is one part or neither end's input triangle is known. The remesh of
-// one part must not land on another that touches or passes through it.
+// The input part edge k remeshes (RemeshParts), kAnyPart for an input of one
+// part: the remesh of one part must not land on another that touches or passes
+// through it.
 uint32_t LevelRefiner::EdgePart(uint32_t k) const {
-  if (s_.face_part.empty()) return kAnyPart;
-  for (uint32_t v : h_.OddEdge(j_, k)) {
-    if (on_face_[v] != kNoFace) return s_.face_part[on_face_[v]];
-  }
-  return kAnyPart;
+  return parts_.Of(dom_.Sides(k).left, j_);
 }
 
 bool LevelRefiner::OnPart(uint32_t input_face, uint32_t part) const {
@@ -572,13 +568,24 @@ std::optional<Vec3> InputSurface::ClosestBoundaryPoint(const Vec3& target, doubl
   return best;
 }
 
-void RefineLevel(const SemiRegularHierarchy& hierarchy, int j, const InputSurface& surface,
+RemeshParts BaseFaceParts(const InputSurface& surface, const std::vector<uint32_t>& base_to_input,
+                          const std::vector<Face>& base_faces) {
+  RemeshParts parts;
+  if (surface.face_part.empty()) return parts;
+  for (const Face& f : base_faces) {
+    const uint32_t v = base_to_input[f[0]];
+    parts.of_base_face.push_back(surface.face_part[surface.vertex_faces[surface.face_offsets[v]]]);
+  }
+  return parts;
+}
+
+void RefineLevel(const SemiRegularHierarchy& hierarchy, int j, const InputSurface& surface, const RemeshParts& parts,
                  const StencilTable& stencils, std::vector<Vec3>* positions, std::vector<uint32_t>* on_faces,
                  std::vector<VertexKind>* kinds, std::vector<ParamPoint>* params, LevelStats* stats) {
   *stats = LevelStats();
   std::vector<Vec3> level = *positions;
   const std::vector<uint32_t> level_faces = *on_faces;
-  remesh_internal::LevelRefiner refiner(hierarchy, j, surface, &level, level_faces, params);
+  remesh_internal::LevelRefiner refiner(hierarchy, j, surface, parts, &level, level_faces, params);
   refiner.Run(stencils, positions, on_faces, kinds, stats);
   *params = refiner.TakeParams();
 }

@@ -44,6 +44,7 @@
 #include "mesh/semi_regular.h"
 #include "mesh/triangle_bvh.h"
 #include "remesh/param_point.h"
+#include "remesh/quality_checks.h"
 #include "wavelet/butterfly.h"
 
 namespace eqmesh {
@@ -74,6 +75,23 @@ struct InputSurface {
   double LowerX(const Edge& e) const;
 };
 
+// The input part (InputSurface::face_part) each base face of a remesh covers,
+// so a face of any level is judged against its own part and pierced onto it
+// only: the faces of base face t at level L are [t * 4^L, (t + 1) * 4^L), and
+// no face spans two parts. Empty for an input of one part.
+struct RemeshParts {
+  std::vector<uint32_t> of_base_face;
+
+  uint32_t Of(uint32_t face, int level) const {
+    return of_base_face.empty() ? kAnyPart : of_base_face[face >> (2 * level)];
+  }
+};
+
+// The parts of a base domain's faces, whose corners are the input vertices
+// `base_to_input` names.
+RemeshParts BaseFaceParts(const InputSurface& surface, const std::vector<uint32_t>& base_to_input,
+                          const std::vector<Face>& base_faces);
+
 // Levels with at least this many faces per input face are refined in 3D: hits
 // are validated and demoted midpoints placed in the 3D diamond rather than
 // through charts of the input's parameters. Measured on the bench meshes: 0.5
@@ -101,7 +119,7 @@ struct LevelStats {
 // `params` (one per input vertex) moves from level j to j+1.
 // `stencils`: BuildButterflyStencils(hierarchy, j), built by the caller so the
 // untangling can reuse it (StencilCache).
-void RefineLevel(const SemiRegularHierarchy& hierarchy, int j, const InputSurface& surface,
+void RefineLevel(const SemiRegularHierarchy& hierarchy, int j, const InputSurface& surface, const RemeshParts& parts,
                  const StencilTable& stencils, std::vector<Vec3>* positions, std::vector<uint32_t>* on_faces,
                  std::vector<VertexKind>* kinds, std::vector<ParamPoint>* params, LevelStats* stats);
 

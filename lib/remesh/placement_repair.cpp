@@ -96,7 +96,7 @@ bool LevelRefiner::Folded(uint32_t child, double* error) const {
   if (!(n.squaredNorm() > 0.0)) return true;
   // Placement scores need the error term, which needs the search.
   if (!error && SurelyUnfolded(t, n)) return false;
-  return FacesAwayFromInput(*s_.bvh, *s_.mesh, s_.face_part, a, b, c, error);
+  return FacesAwayFromInput(*s_.bvh, *s_.mesh, s_.face_part, parts_.Of(child, j_ + 1), a, b, c, error);
 }
 
 // The six level-(j+1) faces around odd vertex k (three children of each side).

@@ -2,8 +2,7 @@
 #include "remesh/quality_checks.h"
 
 #include <algorithm>
-#include <array>
-#include <limits>
+#include <map>
 #include <mutex>
 
 #include <Eigen/Geometry>
@@ -22,36 +21,26 @@ std::vector<uint32_t> FacePartsForFoldTest(const Mesh& input) {
 
 namespace {
 
-// The part under at least two of the corners, else kAnyPart.
-uint32_t PartUnderCorners(const TriangleBvh& bvh, const std::vector<uint32_t>& face_part, const Vec3& a,
-                          const Vec3& b, const Vec3& c) {
-  std::array<uint32_t, 3> part{};
-  const std::array<const Vec3*, 3> corners{&a, &b, &c};
-  for (int i = 0; i < 3; ++i) {
-    const ClosestPointResult cp = bvh.ClosestPoint(*corners[i]);
-    part[i] = cp.found() ? face_part[cp.face] : kAnyPart;
-  }
-  if (part[0] == part[1] || part[0] == part[2]) return part[0];
-  return part[1] == part[2] ? part[1] : kAnyPart;
-}
-
 // The input face closest to p, within `reach` first (see FacesAwayFromInput),
 // among the faces of `part` unless it is kAnyPart.
 ClosestPointResult ClosestOnPart(const TriangleBvh& bvh, const std::vector<uint32_t>& face_part, uint32_t part,
                                  const Vec3& p, double reach) {
-  if (part == kAnyPart) {
+  if (part == kAnyPart || face_part.empty()) {
     ClosestPointResult cp = bvh.ClosestPoint(p, reach);
     return cp.found() ? cp : bvh.ClosestPoint(p);
   }
   const auto on_part = [&](uint32_t f) { return face_part[f] == part; };
-  ClosestPointResult cp = bvh.ClosestPointFiltered(p, on_part, reach);
+  ClosestPointResult cp = bvh.ClosestPoint(p, reach);
+  // The nearest face of all, when it is the part's, is the part's nearest.
+  if (cp.found() && face_part[cp.face] == part) return cp;
+  cp = bvh.ClosestPointFiltered(p, on_part, reach);
   return cp.found() ? cp : bvh.ClosestPointFiltered(p, on_part);
 }
 
 }  // namespace
 
 bool FacesAwayFromInput(const TriangleBvh& bvh, const Mesh& input, const std::vector<uint32_t>& face_part,
-                        const Vec3& a, const Vec3& b, const Vec3& c, double* error) {
+                        uint32_t part, const Vec3& a, const Vec3& b, const Vec3& c, double* error) {
   const Vec3 n = (b - a).cross(c - a);
   const Vec3 centroid = (a + b + c) / 3.0;
   // The triangle's corners lie on (or near) the input, so the nearest corner
@@ -60,7 +49,6 @@ bool FacesAwayFromInput(const TriangleBvh& bvh, const Mesh& input, const std::ve
   // search, and a bound never changes which face is found (the traversal
   // order does not depend on it), so the result is the unbounded query's.
   const double reach = std::min({(a - centroid).norm(), (b - centroid).norm(), (c - centroid).norm()}) * (1.0 + 1e-9);
-  const uint32_t part = face_part.empty() ? kAnyPart : PartUnderCorners(bvh, face_part, a, b, c);
   const ClosestPointResult cp = ClosestOnPart(bvh, face_part, part, centroid, reach);
   if (!cp.found()) return false;
   if (error) *error += n.norm() * cp.squared_distance;
@@ -70,9 +58,10 @@ bool FacesAwayFromInput(const TriangleBvh& bvh, const Mesh& input, const std::ve
 }
 
 bool FoldedOrDegenerate(const TriangleBvh& bvh, const Mesh& input, const std::vector<uint32_t>& face_part,
-                        const Vec3& a, const Vec3& b, const Vec3& c, double degenerate_double_area, double* error) {
+                        uint32_t part, const Vec3& a, const Vec3& b, const Vec3& c, double degenerate_double_area,
+                        double* error) {
   if (!((b - a).cross(c - a).norm() > degenerate_double_area)) return true;
-  return FacesAwayFromInput(bvh, input, face_part, a, b, c, error);
+  return FacesAwayFromInput(bvh, input, face_part, part, a, b, c, error);
 }
 
 double DegenerateDoubleArea(const Mesh& input) {
@@ -80,9 +69,51 @@ double DegenerateDoubleArea(const Mesh& input) {
   return 1e-14 * diag * diag;
 }
 
+namespace {
+
+// Per vertex of `remesh`, the input part its connected part of the remesh is
+// judged against (FacesAwayFromInput): the one most of its vertices lie
+// nearest to, from at most kPartVotes of them. Empty for a one-part input.
+constexpr size_t kPartVotes = 1000;
+
+std::vector<uint32_t> RemeshVertexParts(const Mesh& remesh, const TriangleBvh& bvh,
+                                        const std::vector<uint32_t>& face_part) {
+  if (face_part.empty()) return {};
+  const MeshTopology topology(remesh);
+  std::vector<std::vector<uint32_t>> members(topology.num_components());
+  std::vector<uint32_t> vertex_component(remesh.positions.size(), MeshTopology::kNone);
+  for (size_t f = 0; f < remesh.faces.size(); ++f) {
+    for (uint32_t v : remesh.faces[f]) vertex_component[v] = topology.FaceComponents()[f];
+  }
+  for (uint32_t v = 0; v < vertex_component.size(); ++v) {
+    if (vertex_component[v] != MeshTopology::kNone) members[vertex_component[v]].push_back(v);
+  }
+  std::vector<uint32_t> component_part(members.size(), kAnyPart);
+  for (size_t c = 0; c < members.size(); ++c) {
+    std::map<uint32_t, size_t> votes;
+    const size_t step = std::max<size_t>(1, members[c].size() / kPartVotes);
+    for (size_t i = 0; i < members[c].size(); i += step) {
+      const ClosestPointResult cp = bvh.ClosestPoint(remesh.positions[members[c][i]]);
+      if (cp.found()) ++votes[face_part[cp.face]];
+    }
+    size_t best = 0;
+    for (const auto& [part, count] : votes) {
+      if (count > best) best = count, component_part[c] = part;
+    }
+  }
+  std::vector<uint32_t> out(remesh.positions.size(), kAnyPart);
+  for (uint32_t v = 0; v < out.size(); ++v) {
+    if (vertex_component[v] != MeshTopology::kNone) out[v] = component_part[vertex_component[v]];
+  }
+  return out;
+}
+
+}  // namespace
+
 StatusOr<FoldReport> CountFoldsAgainstInput(const Mesh& remesh, const Mesh& input) {
   EQMESH_ASSIGN_OR_RETURN(TriangleBvh bvh, TriangleBvh::Build(input));
   const std::vector<uint32_t> face_part = FacePartsForFoldTest(input);
+  const std::vector<uint32_t> vertex_part = RemeshVertexParts(remesh, bvh, face_part);
   const double tiny = DegenerateDoubleArea(input);
   FoldReport total;
   std::mutex lock;
@@ -98,7 +129,8 @@ StatusOr<FoldReport> CountFoldsAgainstInput(const Mesh& remesh, const Mesh& inpu
         ++local.degenerate_faces;
         continue;
       }
-      if (FacesAwayFromInput(bvh, input, face_part, a, b, c)) ++local.flipped_faces;
+      const uint32_t part = vertex_part.empty() ? kAnyPart : vertex_part[f[0]];
+      if (FacesAwayFromInput(bvh, input, face_part, part, a, b, c)) ++local.flipped_faces;
     }
     std::lock_guard<std::mutex> guard(lock);
     total.flipped_faces += local.flipped_faces;

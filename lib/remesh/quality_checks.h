@@ -40,6 +40,8 @@ inline constexpr double kSliverQuality = 0.1;
 // Faces of `mesh` with TriangleQuality below kSliverQuality.
 size_t CountSlivers(const Mesh& mesh);
 
+// Each connected part of `remesh` is judged against the input part most of its
+// vertices lie nearest to.
 StatusOr<FoldReport> CountFoldsAgainstInput(const Mesh& remesh, const Mesh& input);
 
 // Twice the area at or below which a face of a remesh of `input` counts as
@@ -55,22 +57,22 @@ std::vector<uint32_t> FacePartsForFoldTest(const Mesh& input);
 // "No particular part", where a part of the input is asked for.
 inline constexpr uint32_t kAnyPart = std::numeric_limits<uint32_t>::max();
 
-// The fold test behind CountFoldsAgainstInput, for one triangle (a, b, c): its
-// normal is opposed to that of the input face closest to its centroid. Adds
-// twice the triangle's area times that squared distance to *error when given.
-// Degenerate triangles are not folded (CountFoldsAgainstInput counts them apart).
-// `face_part` (FacePartsForFoldTest): with several parts, the closest face is
-// taken from the part under two or three of the corners (any part when all
-// three differ). Parts that touch or interpenetrate (bones at a joint) put one
-// part's faces nearest the centroids of another's remesh faces, facing the
-// other way, and the plain test would call those faces folded.
+// The fold test behind CountFoldsAgainstInput, for one triangle (a, b, c) of
+// the remesh of input part `part` (kAnyPart: of the whole input): its normal is
+// opposed to that of the part's face closest to its centroid. Adds twice the
+// triangle's area times that squared distance to *error when given. Degenerate
+// triangles are not folded (CountFoldsAgainstInput counts them apart).
+// `face_part`: FacePartsForFoldTest(input). Parts that touch or interpenetrate
+// (bones at a joint) put one part's faces nearest the centroids of another's
+// remesh faces, facing the other way: against the whole input, those faces
+// would count as folded.
 bool FacesAwayFromInput(const TriangleBvh& bvh, const Mesh& input, const std::vector<uint32_t>& face_part,
-                        const Vec3& a, const Vec3& b, const Vec3& c, double* error = nullptr);
+                        uint32_t part, const Vec3& a, const Vec3& b, const Vec3& c, double* error = nullptr);
 
 // What the fold repairs remove: a degenerate triangle (twice its area at most
 // `degenerate_double_area`, see DegenerateDoubleArea) or one that faces away.
 bool FoldedOrDegenerate(const TriangleBvh& bvh, const Mesh& input, const std::vector<uint32_t>& face_part,
-                        const Vec3& a, const Vec3& b, const Vec3& c, double degenerate_double_area,
+                        uint32_t part, const Vec3& a, const Vec3& b, const Vec3& c, double degenerate_double_area,
                         double* error = nullptr);
 
 // The odd, non-boundary vertices of a remesh, and how many of them are normal.

@@ -248,6 +248,7 @@ struct Refinement {
   std::vector<StencilTable> stencils;  // of each refinement, for the untangling
   std::vector<uint32_t> folded_faces;  // of the finest level, as far as known
   std::vector<uint32_t> input_base_face;  // base face of each input vertex's parameter
+  RemeshParts parts;                      // of the base faces
   double untangle_seconds = 0.0;
 };
 
@@ -265,8 +266,8 @@ void UntangleNewLevel(const InputSurface& surface, const std::vector<uint32_t>& 
   if (folded.empty() || !RefinedIn3d(r->hierarchy.Faces(r->levels).size(), surface.mesh->faces.size())) return;
   const auto start = std::chrono::steady_clock::now();
   const std::vector<Vec3> before = r->positions;
-  UntangleFinestLevel(r->hierarchy, surface, folded, r->stencils, &r->positions, &r->kinds, LevelUse::kPiercedFrom,
-                      &r->folded_faces);
+  UntangleFinestLevel(r->hierarchy, surface, r->parts, folded, r->stencils, &r->positions, &r->kinds,
+                      LevelUse::kPiercedFrom, &r->folded_faces);
   for (size_t v = 0; v < before.size(); ++v) {
     if (!(r->positions[v] == before[v])) r->on_faces[v] = kNoFace;
   }
@@ -278,8 +279,8 @@ void UntangleNewLevel(const InputSurface& surface, const std::vector<uint32_t>& 
 void UntangleFinalFolds(const InputSurface& surface, Refinement* r) {
   const auto start = std::chrono::steady_clock::now();
   const std::vector<uint32_t> folded = std::move(r->folded_faces);
-  UntangleFinestLevel(r->hierarchy, surface, folded, r->stencils, &r->positions, &r->kinds, LevelUse::kFinal,
-                      &r->folded_faces);
+  UntangleFinestLevel(r->hierarchy, surface, r->parts, folded, r->stencils, &r->positions, &r->kinds,
+                      LevelUse::kFinal, &r->folded_faces);
   r->untangle_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
@@ -318,6 +319,7 @@ StatusOr<Refinement> RefineAllLevels(const RefineContext& c) {
     r.on_faces.push_back(has_face ? c.surface.vertex_faces[c.surface.face_offsets[v]] : kNoFace);
   }
   r.kinds.assign(nb, VertexKind::kBase);
+  r.parts = BaseFaceParts(c.surface, c.base.base_to_input, c.base.faces);
   std::vector<ParamPoint> params = c.base.params;
   // One level at a time (Refine gives what Build would), so no level is built twice.
   EQMESH_ASSIGN_OR_RETURN(r.hierarchy, SemiRegularHierarchy::Build(nb, c.base.faces, 0));
@@ -339,8 +341,8 @@ StatusOr<Refinement> RefineAllLevels(const RefineContext& c) {
     ReportProgress(c.options.progress, std::string("pierce level ") + std::to_string(r.levels + 1), 0.0);
     LevelStats stats;
     r.stencils.push_back(BuildButterflyStencils(r.hierarchy, r.levels));
-    RefineLevel(r.hierarchy, r.levels, c.surface, r.stencils.back(), &r.positions, &r.on_faces, &r.kinds, &params,
-                &stats);
+    RefineLevel(r.hierarchy, r.levels, c.surface, r.parts, r.stencils.back(), &r.positions, &r.on_faces, &r.kinds,
+                &params, &stats);
     r.estimated_psnr_db_per_level.push_back(EstimatedPsnrDb(c.diagonal, stats.rms_error));
     ++r.levels;
     UntangleNewLevel(c.surface, stats.folded_faces, &r);

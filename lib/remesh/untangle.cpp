@@ -61,7 +61,9 @@ constexpr int kCleanupRounds = 4;
 
 struct Untangler {
   const std::vector<Face>& faces;
+  int level;  // of `faces`, the finest
   const InputSurface& surface;
+  const RemeshParts& parts;
   std::vector<Vec3>& pos;
   FaceIncidence incidence;  // vertex -> finest faces
   const std::vector<VertexKind>& kinds;
@@ -78,14 +80,16 @@ struct Untangler {
   // from here and charged the same work, so the budget runs out where a rerun's would.
   std::map<std::pair<std::vector<uint64_t>, bool>, size_t> failed_sweeps;
 
-  Untangler(const std::vector<Face>& finest, const InputSurface& s, std::vector<Vec3>* p,
-            const std::vector<VertexKind>& k)
-      : faces(finest),
+  Untangler(const SemiRegularHierarchy& h, const InputSurface& s, const RemeshParts& remesh_parts,
+            std::vector<Vec3>* p, const std::vector<VertexKind>& k)
+      : faces(h.Faces(h.levels())),
+        level(h.levels()),
         surface(s),
+        parts(remesh_parts),
         pos(*p),
         kinds(k),
         degenerate_double_area(DegenerateDoubleArea(*s.mesh)),
-        work_left(static_cast<size_t>(kWorkPerFace * static_cast<double>(finest.size()))) {
+        work_left(static_cast<size_t>(kWorkPerFace * static_cast<double>(faces.size()))) {
     incidence = BuildFaceIncidence(faces, pos.size());
   }
 
@@ -109,7 +113,7 @@ struct Untangler {
     if (it == tested.end() || std::memcmp(it->second.corners.data(), corners.data(), sizeof corners) != 0) {
       double e = 0.0;
       // A degenerate face is as bad as a folded one (the bench counts both).
-      const bool folded = FoldedOrDegenerate(*surface.bvh, *surface.mesh, surface.face_part, corners[0], corners[1], corners[2],
+      const bool folded = FoldedOrDegenerate(*surface.bvh, *surface.mesh, surface.face_part, parts.Of(f, level), corners[0], corners[1], corners[2],
                                              degenerate_double_area, &e);
       it = tested.insert_or_assign(f, FoldTest{corners, folded, e}).first;
     }
@@ -655,12 +659,12 @@ size_t MoveCornersOfNewFolds(const SemiRegularHierarchy& hierarchy, const std::v
 }  // namespace
 
 size_t UntangleFinestLevel(const SemiRegularHierarchy& hierarchy, const InputSurface& surface,
-                           const std::vector<uint32_t>& folded, const std::vector<StencilTable>& built,
+                           const RemeshParts& parts, const std::vector<uint32_t>& folded, const std::vector<StencilTable>& built,
                            std::vector<Vec3>* positions, std::vector<VertexKind>* kinds, LevelUse use,
                            std::vector<uint32_t>* still_folded) {
   if (still_folded) still_folded->clear();
   if (hierarchy.levels() < 1 || folded.empty()) return 0;
-  Untangler u(hierarchy.Faces(hierarchy.levels()), surface, positions, *kinds);
+  Untangler u(hierarchy, surface, parts, positions, *kinds);
   u.use = use;
   u.share_floor = use == LevelUse::kFinal ? kMinFinalNormalShare : kMinNormalShare;
   const std::vector<Vec3> start = *positions;
@@ -670,7 +674,7 @@ size_t UntangleFinestLevel(const SemiRegularHierarchy& hierarchy, const InputSur
   // the moves kept: then they are undone as a whole.
   const std::vector<Vec3> moved_only = *positions;
   std::vector<VertexKind> refilled_kinds = *kinds;
-  const std::vector<uint8_t> refilled = FlattenFoldedPatches(hierarchy, surface, *kinds, MaybeFolded(u, folded, start),
+  const std::vector<uint8_t> refilled = FlattenFoldedPatches(hierarchy, surface, parts, *kinds, MaybeFolded(u, folded, start),
                                                              u.incidence, &stencils, positions);
   const size_t refill_marked = MarkMovedNonNormal(hierarchy, refilled, &stencils, &refilled_kinds);
   if (NormalFraction(hierarchy, refilled_kinds) < u.share_floor &&

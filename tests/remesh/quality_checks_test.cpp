@@ -55,7 +55,7 @@ Mesh RoofWithPlateUnderItsRidge() {
   return m;
 }
 
-TEST(FacesAwayFromInput, JudgesAFaceAgainstThePartUnderItsCorners) {
+TEST(FacesAwayFromInput, JudgesAFaceAgainstThePartItRemeshes) {
   const Mesh input = RoofWithPlateUnderItsRidge();
   auto bvh = TriangleBvh::Build(input);
   ASSERT_TRUE(bvh.ok());
@@ -66,9 +66,12 @@ TEST(FacesAwayFromInput, JudgesAFaceAgainstThePartUnderItsCorners) {
   // it; its centroid (z = 1/3) is nearer the plate (z = 0.3) than the slopes.
   const Vec3 a(-0.5, -0.2, 0.25), b(0.5, -0.2, 0.25), c(0, 0.3, 0.5);
   ASSERT_GT((b - a).cross(c - a).z(), 0.0);
-  EXPECT_TRUE(FacesAwayFromInput(*bvh, input, {}, a, b, c));  // judged against the plate
-  EXPECT_FALSE(FacesAwayFromInput(*bvh, input, parts, a, b, c));
-  EXPECT_TRUE(FacesAwayFromInput(*bvh, input, parts, a, c, b));  // turned over, it folds on its own part
+  const uint32_t roof = parts[0];
+  EXPECT_TRUE(FacesAwayFromInput(*bvh, input, {}, kAnyPart, a, b, c));  // judged against the plate
+  EXPECT_TRUE(FacesAwayFromInput(*bvh, input, parts, kAnyPart, a, b, c));
+  EXPECT_FALSE(FacesAwayFromInput(*bvh, input, parts, roof, a, b, c));
+  EXPECT_TRUE(FacesAwayFromInput(*bvh, input, parts, roof, a, c, b));  // turned over, it folds on its part
+  EXPECT_TRUE(FacesAwayFromInput(*bvh, input, parts, parts[4], a, b, c));
   Mesh remesh;
   remesh.positions = {a, b, c};
   remesh.faces = {{0, 1, 2}};

@@ -149,7 +149,7 @@ TEST(BaseDomain, KeepsTheGenusAndEveryChartFacesTheInput) {
     for (size_t f = 0; f < base.faces.size(); ++f) {
       const Vec3 &a = base.positions[base.faces[f][0]], &b = base.positions[base.faces[f][1]],
                  &c = base.positions[base.faces[f][2]];
-      EXPECT_FALSE(FacesAwayFromInput(run.bvh, s.mesh, FacePartsForFoldTest(s.mesh), a, b, c)) << s.name << " base face " << f;
+      EXPECT_FALSE(FacesAwayFromInput(run.bvh, s.mesh, {}, kAnyPart, a, b, c)) << s.name << " base face " << f;
       EXPECT_GE((b - a).cross(c - a).dot(facing[f]), 0.0) << s.name << " base face " << f;
     }
   }
@@ -193,7 +193,7 @@ PiercedLevel PierceOnce(const Mesh& input, const BaseRun& run, const InputSurfac
   out.hierarchy = std::move(h).value();
   const StencilTable stencils = BuildButterflyStencils(out.hierarchy, 0);
   LevelStats stats;
-  RefineLevel(out.hierarchy, 0, surface, stencils, &out.positions, &on_faces, &out.kinds, &out.params, &stats);
+  RefineLevel(out.hierarchy, 0, surface, RemeshParts(), stencils, &out.positions, &on_faces, &out.kinds, &out.params, &stats);
   return out;
 }
 
@@ -228,10 +228,9 @@ TEST(Piercing, NormalVerticesLieOnTheInputAndParametersStayInTheirFaces) {
 
 std::vector<uint32_t> FoldedFaces(const TriangleBvh& bvh, const Mesh& input, const Mesh& level) {
   std::vector<uint32_t> folded;
-  const std::vector<uint32_t> face_part = FacePartsForFoldTest(input);
   for (uint32_t f = 0; f < level.faces.size(); ++f) {
     const Face& t = level.faces[f];
-    if (FacesAwayFromInput(bvh, input, face_part, level.positions[t[0]], level.positions[t[1]], level.positions[t[2]])) {
+    if (FacesAwayFromInput(bvh, input, {}, kAnyPart, level.positions[t[0]], level.positions[t[1]], level.positions[t[2]])) {
       folded.push_back(f);
     }
   }
@@ -261,7 +260,7 @@ TEST(Untangle, RemovesAFoldPushedIntoTheFinestLevel) {
   m.positions[pushed] -= 0.3 * m.positions[pushed].normalized();  // about three finest edges inwards
   const std::vector<uint32_t> folded = FoldedFaces(*bvh, input, ExtractLevel(m, 2));
   ASSERT_FALSE(folded.empty());
-  UntangleFinestLevel(h, surface, folded, {}, &m.positions, &m.kinds);
+  UntangleFinestLevel(h, surface, RemeshParts(), folded, {}, &m.positions, &m.kinds);
   EXPECT_TRUE(FoldedFaces(*bvh, input, ExtractLevel(m, 2)).empty());
   for (uint32_t v = 0; v < h.NumVertices(0); ++v) EXPECT_EQ(m.positions[v], before[v]) << "base vertex " << v;
   EXPECT_LT(std::sqrt(bvh->ClosestPoint(m.positions[pushed]).squared_distance), 0.05);
