@@ -80,6 +80,51 @@ TEST(FacesAwayFromInput, JudgesAFaceAgainstThePartItRemeshes) {
   EXPECT_EQ(folds->flipped_faces, 0u);
 }
 
+// A 10 x 10 grid on z = 0 facing up, and a scan patch lying on it facing down,
+// as small patches of a scan lie on its body.
+Mesh GridWithPatchOnIt() {
+  Mesh m;
+  for (int y = 0; y <= 10; ++y) {
+    for (int x = 0; x <= 10; ++x) m.positions.push_back(Vec3(0.1 * x, 0.1 * y, 0.0));
+  }
+  for (uint32_t y = 0; y < 10; ++y) {
+    for (uint32_t x = 0; x < 10; ++x) {
+      const uint32_t v = 11 * y + x;
+      m.faces.push_back({v, v + 1, v + 12});
+      m.faces.push_back({v, v + 12, v + 11});
+    }
+  }
+  const uint32_t p = static_cast<uint32_t>(m.positions.size());
+  m.positions.insert(m.positions.end(), {Vec3(0.25, 0.25, 1e-9), Vec3(0.75, 0.25, 1e-9), Vec3(0.75, 0.75, 1e-9),
+                                         Vec3(0.25, 0.75, 1e-9)});
+  m.faces.push_back({p, p + 2, p + 1});
+  m.faces.push_back({p, p + 3, p + 2});
+  return m;
+}
+
+// A remesh of the grid lying a hair above it (nearer the patch than the grid
+// where the patch is) is judged against the grid, the part most of it lies on,
+// though all three corners of its faces over the patch lie nearer the patch.
+TEST(CountFoldsAgainstInput, JudgesEachPartOfTheRemeshAgainstTheInputPartUnderMostOfIt) {
+  const Mesh input = GridWithPatchOnIt();
+  Mesh remesh = input;
+  remesh.positions.resize(121);
+  remesh.faces.resize(200);
+  for (Vec3& p : remesh.positions) p.z() = 2e-9;
+  const StatusOr<FoldReport> folds = CountFoldsAgainstInput(remesh, input);
+  ASSERT_TRUE(folds.ok());
+  EXPECT_EQ(folds->flipped_faces, 0u);
+  // Face by face against the whole input, the faces over the patch fold.
+  auto bvh = TriangleBvh::Build(input);
+  ASSERT_TRUE(bvh.ok());
+  size_t over_patch = 0;
+  for (const Face& f : remesh.faces) {
+    over_patch += FacesAwayFromInput(*bvh, input, {}, kAnyPart, remesh.positions[f[0]], remesh.positions[f[1]],
+                                     remesh.positions[f[2]]);
+  }
+  EXPECT_GT(over_patch, 0u);
+}
+
 TEST(FacePartsForFoldTest, IsEmptyForAnInputOfOnePart) {
   Mesh roof = RoofWithPlateUnderItsRidge();
   roof.faces.resize(4);
