@@ -986,7 +986,7 @@ StatusOr<BaseDomain> BuildBaseDomain(const Mesh& mesh, const TriangleBvh& bvh,
   }
   Simplifier s(mesh, bvh, is_boundary, options);
   s.Run(options.target_vertices, options.progress);
-  s.RaiseValenceThree();
+  if (options.raise_valence_three) s.RaiseValenceThree();
   BaseDomain base = s.Extract();
   for (const ParamPoint& pp : base.params) {
     if (pp.face >= base.faces.size()) return InternalError("base domain lost an input vertex's parameter");

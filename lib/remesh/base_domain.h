@@ -69,6 +69,11 @@ struct BaseDomainOptions {
   // Per input vertex, a factor on that bound (empty: 1 everywhere): Remesh()
   // tightens it where a remesh still folded (remesh.cpp).
   std::vector<double> bound_scale;
+  // Flip an edge opposite each valence-3 tip (the departure above). Off for
+  // a base no level will refine (Remesh with levels 0): the flips serve the
+  // refinement only, and a base of every input vertex must then be the input
+  // itself (the encoder's as-is representation).
+  bool raise_valence_three = true;
   ProgressFn progress;
 };
 

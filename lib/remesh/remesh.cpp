@@ -171,6 +171,7 @@ StatusOr<Prepared> Prepare(const Mesh& input, const RemeshOptions& options, Reme
 BaseDomainOptions BaseOptions(const Prepared& p, const RemeshOptions& options, double error_share) {
   BaseDomainOptions base;
   base.progress = options.progress;
+  base.raise_valence_three = options.levels != 0;
   if (options.base_vertices > 0) {
     base.target_vertices = static_cast<size_t>(options.base_vertices);
     return base;

@@ -1,10 +1,13 @@
 // Representation choice (coding/representation_choice.h): a low-poly mesh travels
 // as is when that is smaller, still meets its PSNR target and keeps its own
 // triangles; as is is tried only where its connectivity and positions could fit;
-// the as-is mesh holds every component in its base.
+// the as-is mesh holds every component in its base and is the input itself.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <set>
 #include <string>
 
 #include "codec_fixtures.h"
@@ -63,6 +66,36 @@ TEST(RepresentationChoice, AsIsMeshHoldsEveryComponentInItsBase) {
   EXPECT_TRUE(as_is->kept_exactly.faces.empty());
   EXPECT_EQ(as_is->positions.size(), mesh.positions.size());
   EXPECT_EQ(as_is->hierarchy.BaseFaces().size(), mesh.faces.size());
+}
+
+// Each face as its three corners, turned to start at the smallest (orientation kept).
+std::multiset<std::array<std::array<double, 3>, 3>> FaceCorners(const Mesh& m) {
+  std::multiset<std::array<std::array<double, 3>, 3>> out;
+  for (const Face& f : m.faces) {
+    std::array<std::array<double, 3>, 3> t;
+    for (int i = 0; i < 3; ++i) t[i] = {m.positions[f[i]].x(), m.positions[f[i]].y(), m.positions[f[i]].z()};
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+    out.insert(t);
+  }
+  return out;
+}
+
+// A spike on a face of a sphere: a valence-3 tip, where the remesher's base
+// flips an edge for its refinement. The as-is representation has no
+// refinement and must be the input itself.
+TEST(RepresentationChoice, AsIsMeshIsTheInputAtValenceThreeTips) {
+  Mesh mesh = testing::MakeIcosphere(2);
+  const Face split = mesh.faces.back();
+  mesh.faces.pop_back();
+  const Vec3 centroid = (mesh.positions[split[0]] + mesh.positions[split[1]] + mesh.positions[split[2]]) / 3.0;
+  const uint32_t tip = static_cast<uint32_t>(mesh.positions.size());
+  mesh.positions.push_back(1.6 * centroid);
+  mesh.faces.push_back({split[0], split[1], tip});
+  mesh.faces.push_back({split[1], split[2], tip});
+  mesh.faces.push_back({split[2], split[0], tip});
+  auto as_is = AsIsMesh(mesh, false);
+  ASSERT_TRUE(as_is.ok()) << as_is.status().ToString();
+  EXPECT_TRUE(FaceCorners(ExtractLevel(*as_is, 0)) == FaceCorners(mesh));
 }
 
 TEST(RepresentationChoice, LowPolyMeshTravelsAsIsAndMeetsItsTarget) {
