@@ -216,8 +216,8 @@ Vec3 LevelRefiner::FineMidpoint(uint32_t k, uint32_t* on_face) const {
     *on_face = hit->face;
     return m + hit->t * n;
   }
-  const ClosestPointResult cp = part == kAnyPart ? s_.bvh->ClosestPoint(m)
-                                                 : s_.bvh->ClosestPointFiltered(m, [&](uint32_t f) { return OnPart(f, part); });
+  const auto on_part = [&](uint32_t f) { return OnPart(f, part); };
+  const ClosestPointResult cp = part == kAnyPart ? s_.bvh->ClosestPoint(m) : s_.bvh->ClosestPointFiltered(m, on_part);
   *on_face = cp.face;
   return cp.found() ? cp.point : m;
 }

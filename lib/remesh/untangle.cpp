@@ -114,8 +114,8 @@ struct Untangler {
     if (it == tested.end() || std::memcmp(it->second.corners.data(), corners.data(), sizeof corners) != 0) {
       double e = 0.0;
       // A degenerate face is as bad as a folded one (the bench counts both).
-      const bool folded = FoldedOrDegenerate(*surface.bvh, *surface.mesh, surface.face_part, parts.Of(f, level), corners[0], corners[1], corners[2],
-                                             degenerate_double_area, &e);
+      const bool folded = FoldedOrDegenerate(*surface.bvh, *surface.mesh, surface.face_part, parts.Of(f, level),
+                                             corners[0], corners[1], corners[2], degenerate_double_area, &e);
       it = tested.insert_or_assign(f, FoldTest{corners, folded, e}).first;
     }
     if (error) *error += it->second.error;
@@ -660,9 +660,9 @@ size_t MoveCornersOfNewFolds(const SemiRegularHierarchy& hierarchy, const std::v
 }  // namespace
 
 size_t UntangleFinestLevel(const SemiRegularHierarchy& hierarchy, const InputSurface& surface,
-                           const RemeshParts& parts, const std::vector<uint32_t>& folded, const std::vector<StencilTable>& built,
-                           std::vector<Vec3>* positions, std::vector<VertexKind>* kinds, LevelUse use,
-                           std::vector<uint32_t>* still_folded) {
+                           const RemeshParts& parts, const std::vector<uint32_t>& folded,
+                           const std::vector<StencilTable>& built, std::vector<Vec3>* positions,
+                           std::vector<VertexKind>* kinds, LevelUse use, std::vector<uint32_t>* still_folded) {
   if (still_folded) still_folded->clear();
   if (hierarchy.levels() < 1 || folded.empty()) return 0;
   Untangler u(hierarchy, surface, parts, positions, *kinds);
@@ -675,8 +675,8 @@ size_t UntangleFinestLevel(const SemiRegularHierarchy& hierarchy, const InputSur
   // the moves kept: then they are undone as a whole.
   const std::vector<Vec3> moved_only = *positions;
   std::vector<VertexKind> refilled_kinds = *kinds;
-  const std::vector<uint8_t> refilled = FlattenFoldedPatches(hierarchy, surface, parts, *kinds, MaybeFolded(u, folded, start),
-                                                             u.incidence, &stencils, positions);
+  const std::vector<uint8_t> refilled = FlattenFoldedPatches(
+      hierarchy, surface, parts, *kinds, MaybeFolded(u, folded, start), u.incidence, &stencils, positions);
   const size_t refill_marked = MarkMovedNonNormal(hierarchy, refilled, &stencils, &refilled_kinds);
   if (NormalFraction(hierarchy, refilled_kinds) < u.share_floor &&
       NormalFraction(hierarchy, *kinds) >= u.share_floor) {

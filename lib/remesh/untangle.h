@@ -51,8 +51,9 @@ enum class LevelUse { kPiercedFrom, kFinal };
 // when given, gets the faces that fold afterwards among those it looked at.
 // Returns how many normal vertices became non-normal.
 size_t UntangleFinestLevel(const SemiRegularHierarchy& hierarchy, const InputSurface& surface,
-                           const RemeshParts& parts, const std::vector<uint32_t>& folded, const std::vector<StencilTable>& built,
-                           std::vector<Vec3>* positions, std::vector<VertexKind>* kinds,
+                           const RemeshParts& parts, const std::vector<uint32_t>& folded,
+                           const std::vector<StencilTable>& built, std::vector<Vec3>* positions,
+                           std::vector<VertexKind>* kinds,
                            LevelUse use = LevelUse::kFinal,
                            std::vector<uint32_t>* still_folded = nullptr);
 

@@ -40,7 +40,8 @@ TEST(PatchFlattening, RefillsAPlantedFoldAndMovesOnlyRefinedVertices) {
   StencilCache stencils(sr.hierarchy);
   const FaceIncidence finest_faces = BuildFaceIncidence(sr.hierarchy.Faces(levels), sr.positions.size());
   const std::vector<uint8_t> moved =
-      FlattenFoldedPatches(sr.hierarchy, surface, RemeshParts(), sr.kinds, candidates, finest_faces, &stencils, &sr.positions);
+      FlattenFoldedPatches(sr.hierarchy, surface, RemeshParts(), sr.kinds, candidates, finest_faces, &stencils,
+                           &sr.positions);
 
   const testing::FlipCount after = testing::CountFlips(ExtractLevel(sr, levels), sphere);
   EXPECT_EQ(after.flipped + after.degenerate, 0u);

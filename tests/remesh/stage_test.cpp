@@ -193,7 +193,8 @@ PiercedLevel PierceOnce(const Mesh& input, const BaseRun& run, const InputSurfac
   out.hierarchy = std::move(h).value();
   const StencilTable stencils = BuildButterflyStencils(out.hierarchy, 0);
   LevelStats stats;
-  RefineLevel(out.hierarchy, 0, surface, RemeshParts(), stencils, &out.positions, &on_faces, &out.kinds, &out.params, &stats);
+  RefineLevel(out.hierarchy, 0, surface, RemeshParts(), stencils, &out.positions, &on_faces, &out.kinds, &out.params,
+              &stats);
   return out;
 }
 
@@ -230,7 +231,8 @@ std::vector<uint32_t> FoldedFaces(const TriangleBvh& bvh, const Mesh& input, con
   std::vector<uint32_t> folded;
   for (uint32_t f = 0; f < level.faces.size(); ++f) {
     const Face& t = level.faces[f];
-    if (FacesAwayFromInput(bvh, input, {}, kAnyPart, level.positions[t[0]], level.positions[t[1]], level.positions[t[2]])) {
+    const std::vector<Vec3>& x = level.positions;
+    if (FacesAwayFromInput(bvh, input, {}, kAnyPart, x[t[0]], x[t[1]], x[t[2]])) {
       folded.push_back(f);
     }
   }
