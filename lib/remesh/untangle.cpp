@@ -72,7 +72,6 @@ struct Untangler {
   // Fold tests the untangler may still make (kWorkPerFace).
   mutable size_t work_left = 0;
   LevelUse use = LevelUse::kFinal;
-  double share_floor = kMinNormalShare;
   // Cluster sweeps that failed, by everything they read (SweepInput) and the
   // sweep kind, with the work they spent. The same cluster from the same
   // positions fails the same way, and the ring widths, level trials and
@@ -93,6 +92,9 @@ struct Untangler {
         work_left(static_cast<size_t>(kWorkPerFace * static_cast<double>(faces.size()))) {
     incidence = BuildFaceIncidence(faces, pos.size());
   }
+
+  // The normal share the moves and refills of this pass keep.
+  double ShareFloor() const { return use == LevelUse::kFinal ? kMinFinalNormalShare : kMinNormalShare; }
 
   // The last fold test of each face, by its corners bit for bit: a quarter of
   // the tests repeat one (man: 3.4M of 15M), since scores before and after a
@@ -566,7 +568,7 @@ std::pair<std::vector<VertexKind>, size_t> UntangleFrom(const SemiRegularHierarc
 }
 
 // How many normal vertices may turn non-normal before the share drops below
-// kMinNormalShare (NormalFraction's count).
+// `share_floor` (NormalFraction's count).
 size_t NormalsAboveFloor(const SemiRegularHierarchy& h, const std::vector<VertexKind>& kinds, double share_floor) {
   const NormalCount c = CountNormal(h, kinds);
   const auto floor = static_cast<size_t>(std::ceil(share_floor * static_cast<double>(c.counted)));
@@ -599,7 +601,7 @@ size_t MoveFoldedCorners(const SemiRegularHierarchy& hierarchy, const std::vecto
   // level alone comes last, with a budget: its moves enter no stencil, so each
   // costs one normal vertex, and they stop where the share would reach the floor.
   const int last_two = std::max(0, levels - 2);
-  if (NormalFraction(hierarchy, *kinds) < u->share_floor) {
+  if (NormalFraction(hierarchy, *kinds) < u->ShareFloor()) {
     // A remesh already below the floor (dragon_vrip's): the last two levels, freely.
     auto [trial, marked] = UntangleFrom(hierarchy, last_two, folded, *kinds, std::nullopt, cache, u);
     *kinds = std::move(trial);
@@ -607,13 +609,13 @@ size_t MoveFoldedCorners(const SemiRegularHierarchy& hierarchy, const std::vecto
   }
   for (int first = 0; first < levels - 1; ++first) {
     auto [trial, marked] = UntangleFrom(hierarchy, first, folded, *kinds, std::nullopt, cache, u);
-    if (NormalFraction(hierarchy, trial) >= u->share_floor) {
+    if (NormalFraction(hierarchy, trial) >= u->ShareFloor()) {
       *kinds = std::move(trial);
       return marked;
     }
     *positions = start;
   }
-  const size_t budget = NormalsAboveFloor(hierarchy, *kinds, u->share_floor);
+  const size_t budget = NormalsAboveFloor(hierarchy, *kinds, u->ShareFloor());
   auto [trial, marked] = UntangleFrom(hierarchy, levels - 1, folded, *kinds, budget, cache, u);
   *kinds = std::move(trial);
   return marked;
@@ -641,9 +643,9 @@ size_t MoveCornersOfNewFolds(const SemiRegularHierarchy& hierarchy, const std::v
   std::vector<uint32_t> now = StillFolded(*u, folded, start);
   for (int round = 0; round < kCleanupRounds && !now.empty(); ++round) {
     const std::vector<Vec3> before = u->pos;
-    const double share_floor = std::min(u->share_floor, NormalFraction(hierarchy, *kinds));
+    const double share_floor = std::min(u->ShareFloor(), NormalFraction(hierarchy, *kinds));
     auto [trial, round_marked] =
-        UntangleFrom(hierarchy, 0, now, *kinds, NormalsAboveFloor(hierarchy, *kinds, u->share_floor), cache, u);
+        UntangleFrom(hierarchy, 0, now, *kinds, NormalsAboveFloor(hierarchy, *kinds, u->ShareFloor()), cache, u);
     if (NormalFraction(hierarchy, trial) < share_floor) {
       u->pos = before;
       break;
@@ -667,7 +669,6 @@ size_t UntangleFinestLevel(const SemiRegularHierarchy& hierarchy, const InputSur
   if (hierarchy.levels() < 1 || folded.empty()) return 0;
   Untangler u(hierarchy, surface, parts, positions, *kinds);
   u.use = use;
-  u.share_floor = use == LevelUse::kFinal ? kMinFinalNormalShare : kMinNormalShare;
   const std::vector<Vec3> start = *positions;
   StencilCache stencils(hierarchy, built);
   size_t marked = MoveFoldedCorners(hierarchy, folded, start, &stencils, kinds, &u);
@@ -678,8 +679,8 @@ size_t UntangleFinestLevel(const SemiRegularHierarchy& hierarchy, const InputSur
   const std::vector<uint8_t> refilled = FlattenFoldedPatches(
       hierarchy, surface, parts, *kinds, MaybeFolded(u, folded, start), u.incidence, &stencils, positions);
   const size_t refill_marked = MarkMovedNonNormal(hierarchy, refilled, &stencils, &refilled_kinds);
-  if (NormalFraction(hierarchy, refilled_kinds) < u.share_floor &&
-      NormalFraction(hierarchy, *kinds) >= u.share_floor) {
+  if (NormalFraction(hierarchy, refilled_kinds) < u.ShareFloor() &&
+      NormalFraction(hierarchy, *kinds) >= u.ShareFloor()) {
     *positions = moved_only;
   } else {
     *kinds = std::move(refilled_kinds);

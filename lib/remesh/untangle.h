@@ -23,7 +23,7 @@
 // its last two levels untangled freely. Moves are free in
 // 3D; moved vertices, and every later vertex whose butterfly prediction or frame
 // they enter, become non-normal. What still folds then gets its coarse patch
-// refilled (patch_flattening.h), unless that takes the normal share below 0.90.
+// refilled (patch_flattening.h), unless that takes the normal share below the floor.
 // Sweeps and refills can fold faces the moves never looked at (they start from
 // the refinement's folds), so the moves run again, at every level, seeded with
 // what folds then, round after round while that shrinks and the share stays at
