@@ -542,9 +542,24 @@ double DefaultTangentialFactor(bitstream::TransformId transform) {
   return transform == bitstream::TransformId::kLifted ? 4.0 : 2.0;
 }
 
+EncodeOptions WithPreparedOriginal(const EncodeOptions& options) {
+  const bool measures = options.target_psnr > 0 || options.target_bpv > 0 || options.measure_psnr;
+  if (!measures || options.original == nullptr ||
+      (options.prepared_original != nullptr && options.prepared_original->mesh == options.original)) {
+    return options;
+  }
+  EncodeOptions out = options;
+  // An original the meter refuses (or a build without it) is left to each
+  // measurement, which reports why where the measurement is needed.
+  auto prepared = PrepareOriginal(*options.original);
+  out.prepared_original = prepared.ok() ? *std::move(prepared) : nullptr;
+  return out;
+}
+
 StatusOr<double> MeasureEncodedPsnr(const std::vector<uint8_t>& stream, const EncodeOptions& options,
                                     uint64_t fallback) {
-  return MeasureStreamPsnr(stream, *options.original, MeasureSamples(options, fallback), options.max_triangles);
+  return MeasureStreamPsnr(stream, *options.original, MeasureSamples(options, fallback), options.max_triangles,
+                           options.prepared_original.get());
 }
 
 StatusOr<std::vector<uint8_t>> Encode(const SemiRegularMesh& mesh, const EncodeOptions& requested,
@@ -552,6 +567,7 @@ StatusOr<std::vector<uint8_t>> Encode(const SemiRegularMesh& mesh, const EncodeO
   EncodeOptions options = requested;
   if (options.tangential_factor == 0) options.tangential_factor = DefaultTangentialFactor(options.transform);
   EQMESH_RETURN_IF_ERROR(Validate(mesh, options));
+  options = WithPreparedOriginal(options);
   EQMESH_ASSIGN_OR_RETURN(Prepared prep, Prepare(mesh, options.transform, options.draco_base));
   std::deque<Renumbered> cache;
   Pass pass;

@@ -17,6 +17,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "coding/bitstream_shared.h"
@@ -26,6 +27,8 @@
 #include "mesh/semi_regular.h"
 
 namespace eqmesh {
+
+struct PreparedOriginal;
 
 // How near a --bpv target the encoder must land (relative); the CLI warns beyond it.
 constexpr double kBpvTolerance = 0.03;
@@ -59,6 +62,10 @@ struct EncodeOptions {
   size_t input_vertices = 0;
   // The original irregular mesh, for target_psnr and measure_psnr.
   const Mesh* original = nullptr;
+  // *original prepared for the meter (stream_psnr.h), shared by every
+  // measurement of one encode. The encoder's entry points prepare it
+  // (WithPreparedOriginal) where it is missing or was prepared from another mesh.
+  std::shared_ptr<const PreparedOriginal> prepared_original;
   // Decode the final stream and measure its PSNR against *original.
   bool measure_psnr = false;
   // Triangle budget the stream is meant to be decoded within (0: none): PSNR
@@ -93,6 +100,12 @@ double DefaultTangentialFactor(bitstream::TransformId transform);
 inline uint64_t MeasureSamples(const EncodeOptions& options, uint64_t fallback) {
   return options.psnr_samples > 0 ? options.psnr_samples : fallback;
 }
+
+// `options` with prepared_original made for *options.original, where a target or
+// a measurement will measure against it and it is missing or was prepared from
+// another mesh; otherwise `options` as they are. Where the meter cannot prepare
+// the original, each measurement tries on its own and reports why.
+EncodeOptions WithPreparedOriginal(const EncodeOptions& options);
 
 // The decoded `stream`'s PSNR against *options.original, as every measurement of
 // the encoder takes it: decoded within options.max_triangles, with

@@ -21,8 +21,8 @@ constexpr uint64_t kRankingSamples = 250'000;
 // PSNR of the uncoded mesh truncated to `levels`: no stream of that many levels
 // can do better, so a PSNR target above it need not be searched at all.
 StatusOr<double> CeilingPsnr(const SemiRegularMesh& mesh, int levels, const Mesh& original,
-                             uint64_t samples = kRankingSamples) {
-  return MeasureMeshPsnr(ExtractLevel(mesh, levels), original, samples);
+                             uint64_t samples = kRankingSamples, const PreparedOriginal* prepared = nullptr) {
+  return MeasureMeshPsnr(ExtractLevel(mesh, levels), original, samples, prepared);
 }
 
 // Coding only adds error to the truncated geometry; this margin covers the
@@ -83,8 +83,9 @@ StatusOr<Candidate> ScanLevels(const SemiRegularMesh& mesh, const EncodeOptions&
       // the coarse counts would take most of a PSNR-target encode's time).
       // When every coarser count missed, the whole remesh is measured too: a
       // target above it fails at once instead of after a futile search.
-      EQMESH_ASSIGN_OR_RETURN(const double ceiling, CeilingPsnr(mesh, k, *options.original,
-                                                                  MeasureSamples(options, kRankingSamples)));
+      EQMESH_ASSIGN_OR_RETURN(const double ceiling,
+                              CeilingPsnr(mesh, k, *options.original, MeasureSamples(options, kRankingSamples),
+                                          options.prepared_original.get()));
       if (ceiling + kCeilingMarginDb < options.target_psnr) {
         out->trials.push_back({k, 0.0, ceiling, 0, false, false});
         if (k == top) return TargetOutOfReach(options.target_psnr, ceiling, kUncodedCeiling);
@@ -177,8 +178,9 @@ StatusOr<SemiRegularMesh> TruncateLevels(const SemiRegularMesh& mesh, int levels
   return out;
 }
 
-StatusOr<std::vector<uint8_t>> EncodeChoosingLevels(const SemiRegularMesh& mesh, const EncodeOptions& options,
+StatusOr<std::vector<uint8_t>> EncodeChoosingLevels(const SemiRegularMesh& mesh, const EncodeOptions& requested,
                                                     EncodeReport* report, LevelCountReport* levels) {
+  const EncodeOptions options = WithPreparedOriginal(requested);
   LevelCountReport local;
   LevelCountReport& out = levels ? *levels : local;
   out = LevelCountReport();

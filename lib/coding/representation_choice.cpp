@@ -82,10 +82,11 @@ bool WorthTrying(const EncodeOptions& options, const RepresentationOptions& repr
 }  // namespace
 
 StatusOr<std::vector<uint8_t>> EncodeChoosingRepresentation(const SemiRegularMesh& remeshed,
-                                                            const EncodeOptions& options,
+                                                            const EncodeOptions& requested,
                                                             const RepresentationOptions& representation,
                                                             EncodeReport* report, LevelCountReport* levels,
                                                             RepresentationReport* choice) {
+  const EncodeOptions options = WithPreparedOriginal(requested);
   RepresentationReport local;
   RepresentationReport& c = choice ? *choice : local;
   c = RepresentationReport();

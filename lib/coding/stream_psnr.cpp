@@ -7,24 +7,42 @@
 
 namespace eqmesh {
 
-StatusOr<double> MeasureMeshPsnr(const Mesh& mesh, const Mesh& original, uint64_t samples) {
+StatusOr<std::shared_ptr<const PreparedOriginal>> PrepareOriginal(const Mesh& original) {
+#ifdef EQMESH_HAVE_METRICS
+  EQMESH_ASSIGN_OR_RETURN(ReferenceSurface reference, ReferenceSurface::Build(original));
+  auto prepared = std::make_shared<PreparedOriginal>();
+  prepared->mesh = &original;
+  prepared->reference = std::make_shared<const ReferenceSurface>(std::move(reference));
+  return std::shared_ptr<const PreparedOriginal>(std::move(prepared));
+#else
+  (void)original;
+  return UnsupportedFeature("measuring PSNR needs eqmesh_metrics, which this build lacks");
+#endif
+}
+
+StatusOr<double> MeasureMeshPsnr(const Mesh& mesh, const Mesh& original, uint64_t samples,
+                                 const PreparedOriginal* prepared) {
 #ifdef EQMESH_HAVE_METRICS
   CompareOptions compare;
   compare.samples = samples;
+  if (prepared != nullptr && prepared->mesh == &original && prepared->reference != nullptr) {
+    EQMESH_ASSIGN_OR_RETURN(const SurfaceDistance d, prepared->reference->Compare(mesh, compare));
+    return d.psnr_db;
+  }
   EQMESH_ASSIGN_OR_RETURN(const SurfaceDistance d, CompareSurfaces(original, mesh, compare));
   return d.psnr_db;
 #else
-  (void)mesh, (void)original, (void)samples;
+  (void)mesh, (void)original, (void)samples, (void)prepared;
   return UnsupportedFeature("measuring PSNR needs eqmesh_metrics, which this build lacks");
 #endif
 }
 
 StatusOr<double> MeasureStreamPsnr(const std::vector<uint8_t>& stream, const Mesh& original, uint64_t samples,
-                                   uint64_t max_triangles) {
+                                   uint64_t max_triangles, const PreparedOriginal* prepared) {
   DecodeOptions options;
   options.max_triangles = max_triangles;
   EQMESH_ASSIGN_OR_RETURN(const Mesh decoded, Decode(stream.data(), stream.size(), options));
-  return MeasureMeshPsnr(decoded, original, samples);
+  return MeasureMeshPsnr(decoded, original, samples, prepared);
 }
 
 }  // namespace eqmesh

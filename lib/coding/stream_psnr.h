@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "core/status.h"
@@ -11,11 +12,25 @@
 
 namespace eqmesh {
 
-// `samples` per direction; 0: the meter's default. kUnsupportedFeature in a build
-// without eqmesh_metrics.
-StatusOr<double> MeasureMeshPsnr(const Mesh& mesh, const Mesh& original, uint64_t samples = 0);
+class ReferenceSurface;
+
+// An original prepared once for the meter (metrics' ReferenceSurface): an encode
+// measures every trial stream against one original, and preparing it (search
+// tree, area table) each time cost as much as measuring a small trial.
+struct PreparedOriginal {
+  const Mesh* mesh = nullptr;  // what it was prepared from
+  std::shared_ptr<const ReferenceSurface> reference;
+};
+
+// kUnsupportedFeature in a build without eqmesh_metrics, as every function here.
+StatusOr<std::shared_ptr<const PreparedOriginal>> PrepareOriginal(const Mesh& original);
+
+// `samples` per direction; 0: the meter's default. `prepared`, when it was
+// prepared from `original`, saves preparing it again (the same doubles).
+StatusOr<double> MeasureMeshPsnr(const Mesh& mesh, const Mesh& original, uint64_t samples = 0,
+                                 const PreparedOriginal* prepared = nullptr);
 // The stream decoded within `max_triangles` (0: every triangle of every level).
 StatusOr<double> MeasureStreamPsnr(const std::vector<uint8_t>& stream, const Mesh& original, uint64_t samples = 0,
-                                   uint64_t max_triangles = 0);
+                                   uint64_t max_triangles = 0, const PreparedOriginal* prepared = nullptr);
 
 }  // namespace eqmesh

@@ -128,24 +128,44 @@ Mesh Scaled(const Mesh& mesh, double scale) {
   return out;
 }
 
-StatusOr<SurfaceDistance> CompareAtOwnScale(const Mesh& a, const Mesh& b, const CompareOptions& options) {
-  auto sampler_a = AreaSampler::Build(a);
-  if (!sampler_a.ok()) return sampler_a.status().WithContext("original mesh");
+// The original at the scale it is measured at, with what measuring against it needs.
+struct ReferenceParts {
+  double scale = 1.0;  // MeasuringScale of the original
+  Mesh mesh;           // the original, multiplied by `scale`
+  AreaSampler sampler;
+  TriangleBvh bvh;
+  double diagonal = 0.0;  // of `mesh`
+};
+
+StatusOr<ReferenceParts> PrepareReference(const Mesh& a) {
+  ReferenceParts r;
+  r.scale = MeasuringScale(a);
+  r.mesh = r.scale == 1.0 ? a : Scaled(a, r.scale);
+  auto sampler = AreaSampler::Build(r.mesh);
+  if (!sampler.ok()) return sampler.status().WithContext("original mesh");
+  auto bvh = TriangleBvh::Build(r.mesh);
+  if (!bvh.ok()) return bvh.status().WithContext("original mesh");
+  r.sampler = std::move(*sampler);
+  r.bvh = std::move(*bvh);
+  r.diagonal = BoundingBoxDiagonal(r.mesh);
+  return r;
+}
+
+// `b` at the reference's scale against it; lengths at that scale.
+StatusOr<SurfaceDistance> CompareAtOwnScale(const ReferenceParts& a, const Mesh& b, const CompareOptions& options) {
   auto sampler_b = AreaSampler::Build(b);
   if (!sampler_b.ok()) return sampler_b.status().WithContext("other mesh");
-  auto bvh_a = TriangleBvh::Build(a);
-  if (!bvh_a.ok()) return bvh_a.status().WithContext("original mesh");
   auto bvh_b = TriangleBvh::Build(b);
   if (!bvh_b.ok()) return bvh_b.status().WithContext("other mesh");
 
   SurfaceDistance r;
-  r.samples = options.samples > 0 ? options.samples : DefaultSampleCount(a, b);
-  r.bbox_diagonal = BoundingBoxDiagonal(a);
+  r.samples = options.samples > 0 ? options.samples : DefaultSampleCount(a.mesh, b);
+  r.bbox_diagonal = a.diagonal;
   const double zero = kNumericalZero * std::max(r.bbox_diagonal, BoundingBoxDiagonal(b));
   const DirectionStats ab =
-      MeasureDirection({*sampler_a, *bvh_b, b, r.samples, options.seed, 0, zero}, options.threads);
+      MeasureDirection({a.sampler, *bvh_b, b, r.samples, options.seed, 0, zero}, options.threads);
   const DirectionStats ba =
-      MeasureDirection({*sampler_b, *bvh_a, a, r.samples, options.seed, 1, zero}, options.threads);
+      MeasureDirection({*sampler_b, a.bvh, a.mesh, r.samples, options.seed, 1, zero}, options.threads);
   r.rms_ab = ab.rms;
   r.rms_ba = ba.rms;
   r.rms = std::max(ab.rms, ba.rms);
@@ -183,18 +203,35 @@ double PsnrDb(double bbox_diagonal, double rms) {
   return 20.0 * std::log10(bbox_diagonal / rms);
 }
 
-StatusOr<SurfaceDistance> CompareSurfaces(const Mesh& a, const Mesh& b,
-                                          const CompareOptions& options) {
+struct ReferenceSurface::Prepared : ReferenceParts {
+  explicit Prepared(ReferenceParts parts) : ReferenceParts(std::move(parts)) {}
+};
+
+StatusOr<ReferenceSurface> ReferenceSurface::Build(const Mesh& a) {
+  EQMESH_ASSIGN_OR_RETURN(ReferenceParts parts, PrepareReference(a));
+  ReferenceSurface reference;
+  reference.prepared_ = std::make_shared<const Prepared>(std::move(parts));
+  return reference;
+}
+
+StatusOr<SurfaceDistance> ReferenceSurface::Compare(const Mesh& b, const CompareOptions& options) const {
   EQMESH_RETURN_IF_ERROR(CheckOptions(options));
-  const double scale = MeasuringScale(a);
-  if (scale == 1.0) return CompareAtOwnScale(a, b, options);
+  const double scale = prepared_->scale;
+  if (scale == 1.0) return CompareAtOwnScale(*prepared_, b, options);
   // Both by the same power of two (exact), the lengths back by its inverse.
-  EQMESH_ASSIGN_OR_RETURN(SurfaceDistance r, CompareAtOwnScale(Scaled(a, scale), Scaled(b, scale), options));
+  EQMESH_ASSIGN_OR_RETURN(SurfaceDistance r, CompareAtOwnScale(*prepared_, Scaled(b, scale), options));
   for (double* length : {&r.bbox_diagonal, &r.rms_ab, &r.rms_ba, &r.rms, &r.mean_ab, &r.mean_ba, &r.mean,
                          &r.hausdorff_ab, &r.hausdorff_ba, &r.hausdorff}) {
     *length /= scale;
   }
   return r;
+}
+
+StatusOr<SurfaceDistance> CompareSurfaces(const Mesh& a, const Mesh& b,
+                                          const CompareOptions& options) {
+  EQMESH_RETURN_IF_ERROR(CheckOptions(options));
+  EQMESH_ASSIGN_OR_RETURN(const ReferenceSurface reference, ReferenceSurface::Build(a));
+  return reference.Compare(b, options);
 }
 
 }  // namespace eqmesh

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 
 #include "core/status.h"
 #include "mesh/mesh.h"
@@ -50,6 +51,23 @@ Status ValidateForCompare(const Mesh& mesh);
 // any thread count.
 StatusOr<SurfaceDistance> CompareSurfaces(const Mesh& a, const Mesh& b,
                                           const CompareOptions& options = {});
+
+// The original side of CompareSurfaces prepared once (its scale, area sampler
+// and search tree), for measuring many meshes against one original: the
+// encoder's searches measure every trial stream, the remesher every retried
+// remesh. Compare(b, options) gives the doubles CompareSurfaces(a, b, options)
+// gives. Keeps its own copy of `a`; copies share the prepared state.
+class ReferenceSurface {
+ public:
+  // Fails where CompareSurfaces would fail on `a` as the original.
+  static StatusOr<ReferenceSurface> Build(const Mesh& a);
+
+  StatusOr<SurfaceDistance> Compare(const Mesh& b, const CompareOptions& options = {}) const;
+
+ private:
+  struct Prepared;
+  std::shared_ptr<const Prepared> prepared_;
+};
 
 // 20 log10(bbox_diagonal / rms); +inf when rms == 0.
 double PsnrDb(double bbox_diagonal, double rms);

@@ -228,13 +228,14 @@ LevelDecision NextLevel(const RemeshOptions& options, int levels_done, LevelSize
 
 // Metro PSNR of the level against the surface it remeshes (a sampled estimate:
 // kLevelPsnrSamples per direction).
-double MeasureLevelPsnr(const Mesh& surface, const std::vector<Vec3>& positions, const std::vector<Face>& faces) {
+double MeasureLevelPsnr(const ReferenceSurface& surface, const std::vector<Vec3>& positions,
+                        const std::vector<Face>& faces) {
   Mesh level;
   level.positions = positions;
   level.faces = faces;
   CompareOptions compare;
   compare.samples = kLevelPsnrSamples;
-  const StatusOr<SurfaceDistance> d = CompareSurfaces(surface, level, compare);
+  const StatusOr<SurfaceDistance> d = surface.Compare(level, compare);
   return d.ok() ? d->psnr_db : 0.0;
 }
 
@@ -305,6 +306,7 @@ void CountNormalVertices(const SemiRegularHierarchy& h, const std::vector<Vertex
 struct RefineContext {
   const BaseDomain& base;
   const Mesh& surface_mesh;
+  const ReferenceSurface& reference;  // surface_mesh, for the meter
   const InputSurface& surface;
   const RemeshOptions& options;
   double diagonal;
@@ -334,7 +336,7 @@ StatusOr<Refinement> RefineAllLevels(const RefineContext& c) {
     const LevelDecision decision = NextLevel(c.options, r.levels, current, next, c.density);
     if (decision == LevelDecision::kStop) break;
     if (decision == LevelDecision::kMeasureFirst) {
-      const double psnr = MeasureLevelPsnr(c.surface_mesh, r.positions, r.hierarchy.Faces(r.levels));
+      const double psnr = MeasureLevelPsnr(c.reference, r.positions, r.hierarchy.Faces(r.levels));
       if (psnr >= kAutoTargetPsnrDb || psnr - previous_psnr < kAutoMinGainDb) break;
       previous_psnr = psnr;
     }
@@ -354,6 +356,7 @@ StatusOr<Refinement> RefineAllLevels(const RefineContext& c) {
 
 struct SurfaceContext {
   const Prepared& prep;
+  const ReferenceSurface& reference;  // prep.surface, for the meter
   const TriangleBvh& bvh;
   const InputSurface& surface;
   const RemeshOptions& options;
@@ -379,8 +382,8 @@ StatusOr<Refinement> RemeshSurface(const SurfaceContext& c, double error_share, 
     report->notes.push_back("simplification stalled at " + std::to_string(base.base_to_input.size()) +
                             " base vertices (asked for " + std::to_string(base_options.target_vertices) + ")");
   }
-  const RefineContext refine{base, c.prep.surface, c.surface, c.options, BoundingBoxDiagonal(c.prep.surface),
-                             c.density};
+  const RefineContext refine{base,      c.prep.surface, c.reference, c.surface, c.options,
+                             BoundingBoxDiagonal(c.prep.surface), c.density};
   EQMESH_ASSIGN_OR_RETURN(Refinement r, RefineAllLevels(refine));
   report->stage_seconds.refine += seconds_since_lap() - r.untangle_seconds;
   report->stage_seconds.untangle += r.untangle_seconds;
@@ -392,7 +395,7 @@ StatusOr<Refinement> RemeshSurface(const SurfaceContext& c, double error_share, 
 // The floor's meter on a refinement; adds its seconds to the report.
 double MeasureRemeshPsnr(const SurfaceContext& c, const Refinement& r, RemeshReport* report) {
   const auto measuring = std::chrono::steady_clock::now();
-  const double psnr = MeasureLevelPsnr(c.prep.surface, r.positions, r.hierarchy.Faces(r.levels));
+  const double psnr = MeasureLevelPsnr(c.reference, r.positions, r.hierarchy.Faces(r.levels));
   report->stage_seconds.measure += std::chrono::duration<double>(std::chrono::steady_clock::now() - measuring).count();
   return psnr;
 }
@@ -539,9 +542,12 @@ StatusOr<SemiRegularMesh> Remesh(const Mesh& input, const RemeshOptions& options
   const double scale = PowerOfTwoUnitScale(prep.surface);
   for (Vec3& p : prep.surface.positions) p *= scale;
   EQMESH_ASSIGN_OR_RETURN(TriangleBvh bvh, TriangleBvh::Build(prep.surface));
+  // Every remesh tried is measured against the same surface: prepared once.
+  EQMESH_ASSIGN_OR_RETURN(const ReferenceSurface reference, ReferenceSurface::Build(prep.surface));
   report.stage_seconds.prepare = seconds_since_lap();
   const InputSurface surface(prep.surface, bvh, prep.boundary);
-  const SurfaceContext context{prep, bvh, surface, options, AutoDensityTarget(prep.surface, prep.input_vertices)};
+  const SurfaceContext context{prep,    reference, bvh, surface,
+                               options, AutoDensityTarget(prep.surface, prep.input_vertices)};
   EQMESH_ASSIGN_OR_RETURN(Refinement best, RemeshWithFewerFolds(context, &report));
   report.base_vertices = best.hierarchy.NumVertices(0);
   CountNormalVertices(best.hierarchy, best.kinds, &report);

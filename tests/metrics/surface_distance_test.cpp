@@ -215,3 +215,38 @@ TEST(CompareSurfaces, ExtremeScalesMeasureAsAtUnitScale) {
 
 }  // namespace
 }  // namespace eqmesh
+
+namespace eqmesh {
+namespace {
+
+// The encoder measures every trial stream against one original, prepared once:
+// each comparison must give CompareSurfaces' doubles, at ordinary and extreme
+// scales, and errors on the other mesh as CompareSurfaces gives them.
+TEST(ReferenceSurface, ComparesEachMeshAsCompareSurfacesDoes) {
+  const Mesh a = testing::MakeTorus(30, 14);
+  for (const double scale : {1.0, 0x1p900}) {
+    const Mesh original = Scaled(a, scale);
+    auto reference = ReferenceSurface::Build(original);
+    ASSERT_TRUE(reference.ok()) << reference.status().ToString();
+    for (const Vec3& t : {Vec3(0.01, 0.0, 0.0), Vec3(0.0, -0.02, 0.005)}) {
+      const Mesh other = Scaled(Translated(testing::MakeTorus(24, 12), t), scale);
+      const CompareOptions options{3 * 4096 + 5, 11, 2};
+      auto expected = CompareSurfaces(original, other, options);
+      auto got = reference->Compare(other, options);
+      ASSERT_TRUE(expected.ok() && got.ok());
+      EXPECT_GT(got->rms, 0.0);
+      ExpectBitIdentical(*expected, *got);
+    }
+  }
+  Mesh broken = testing::MakeIcosphere(1);
+  broken.faces[0][1] = 100000;
+  auto reference = ReferenceSurface::Build(a);
+  ASSERT_TRUE(reference.ok());
+  const auto status = reference->Compare(broken).status();
+  EXPECT_FALSE(status.ok());
+  EXPECT_EQ(status.ToString(), CompareSurfaces(a, broken).status().ToString());
+  EXPECT_FALSE(ReferenceSurface::Build(Mesh()).ok());
+}
+
+}  // namespace
+}  // namespace eqmesh
