@@ -42,6 +42,16 @@ constexpr size_t kMaxFineForwardChartFaces = 256;
 // they are, where 4 and 8 give them slivers (measured:
 // bench/log/2026-12-05-remesh-notebook.md).
 constexpr double kMidpointReach = 16.0;
+// ... and one farther than this many edge lengths from the edge's own midpoint
+// too: a prediction can itself lie far off (boundaries, irregular
+// neighbourhoods), and within 16 edge lengths of it a level-1 vertex of
+// dragon_vrip's canonical copy landed 10 edge lengths (1.4 cm, 0.5 % of the
+// diagonal) from its edge, a spike whose faces measured 0.8 % of the diagonal
+// off the input (81.27 dB; 86.73 dB without it). On the mid-size meshes 4 moves
+// only femur, man, mannequin-devil and diplodocus, whose charts send up to 140
+// midpoints 4-17 edge lengths away, and keeps every remesh at or above its PSNR
+// (bench/log/2026-12-06-midpoint-reach.md).
+constexpr double kMidpointEdgeReach = 4.0;
 
 double Quality2d(const Vec2& a, const Vec2& b, const Vec2& c) {
   const double denom = (b - a).squaredNorm() + (c - b).squaredNorm() + (a - c).squaredNorm();
@@ -149,13 +159,18 @@ bool LevelRefiner::InDiamond(const Vec3d& u, int slot) const {
 
 // Surface point of a demoted midpoint of edge k at chart parameter u: the
 // forward map's, unless it found no input triangle there or one farther than
-// kMidpointReach edge lengths from the prediction; then FineMidpoint's.
+// kMidpointReach edge lengths from the prediction or kMidpointEdgeReach from
+// the edge's midpoint; then FineMidpoint's.
 Vec3 LevelRefiner::MidpointPosition(uint32_t k, const Vec3d& u, Chart* chart, uint32_t* on_face) const {
   if (fine_) return FineMidpoint(k, on_face);
   const Edge& e = h_.OddEdge(j_, k);
-  const double reach = kMidpointReach * (pos_[e[0]] - pos_[e[1]]).norm();
-  const std::optional<Vec3> mapped = ForwardMap(dom_.Sides(k).left, u, predicted_[k], reach, chart, on_face);
-  return mapped ? *mapped : FineMidpoint(k, on_face);
+  const double length = (pos_[e[0]] - pos_[e[1]]).norm();
+  const std::optional<Vec3> mapped =
+      ForwardMap(dom_.Sides(k).left, u, predicted_[k], kMidpointReach * length, chart, on_face);
+  const Vec3 middle = 0.5 * (pos_[e[0]] + pos_[e[1]]);
+  const double edge_reach = kMidpointEdgeReach * length;
+  if (mapped && (*mapped - middle).squaredNorm() <= edge_reach * edge_reach) return *mapped;
+  return FineMidpoint(k, on_face);
 }
 
 EdgeChoice LevelRefiner::MidpointChoice(uint32_t k) const {

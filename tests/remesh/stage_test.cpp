@@ -3,12 +3,14 @@
 // charts, topology, tips kept), one piercing step, and the untangling.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
 
 #include "hard_shapes.h"
 #include "mesh/mesh_topology.h"
+#include "mesh_io/mesh_io.h"
 #include "mesh/triangle_bvh.h"
 #include "remesh/base_domain.h"
 #include "remesh/piercing.h"
@@ -225,6 +227,50 @@ TEST(Piercing, NormalVerticesLieOnTheInputAndParametersStayInTheirFaces) {
       EXPECT_NEAR(sum, 1.0, 1e-9) << s.name;
     }
   }
+}
+
+// Largest distance, in edge lengths, of a non-normal vertex of `input`'s first
+// `levels` levels (pierced from a base at the default bound, no untangling)
+// from the midpoint of the edge it splits.
+double FarthestMidpointInEdgeLengths(const Mesh& input, int levels) {
+  const BaseRun run = BuildBase(input, kErrorShare);
+  const InputSurface surface(input, run.bvh, std::vector<uint8_t>(input.positions.size(), 0));
+  std::vector<Vec3> positions;
+  std::vector<uint32_t> on_faces;
+  for (uint32_t v : run.base.base_to_input) {
+    positions.push_back(input.positions[v]);
+    on_faces.push_back(surface.vertex_faces[surface.face_offsets[v]]);
+  }
+  std::vector<VertexKind> kinds(positions.size(), VertexKind::kBase);
+  std::vector<ParamPoint> params = run.base.params;
+  auto h = SemiRegularHierarchy::Build(static_cast<uint32_t>(positions.size()), run.base.faces, levels);
+  EXPECT_TRUE(h.ok()) << h.status().ToString();
+  double farthest = 0.0;
+  for (int j = 0; h.ok() && j < levels; ++j) {
+    const StencilTable stencils = BuildButterflyStencils(*h, j);
+    LevelStats stats;
+    RefineLevel(*h, j, surface, RemeshParts(), stencils, &positions, &on_faces, &kinds, &params, &stats);
+    for (uint32_t k = 0; k < h->NumOddVertices(j); ++k) {
+      const uint32_t v = h->NumVertices(j) + k;
+      if (kinds[v] != VertexKind::kNonNormal) continue;
+      const Edge& e = h->OddEdge(j, k);
+      const double length = (positions[e[0]] - positions[e[1]]).norm();
+      farthest = std::max(farthest, (positions[v] - 0.5 * (positions[e[0]] + positions[e[1]])).norm() / length);
+    }
+  }
+  return farthest;
+}
+
+// A chart unfolded around a vertex of valence != 6 can overlap another patch,
+// and a midpoint mapped through it lands far from its own edge: femur's second
+// level put one 7.9 edge lengths away (a spike no later level removes). Such
+// points are replaced by the surface point at the edge's 3D midpoint.
+TEST(Piercing, ParametricMidpointsStayNearTheEdgeTheySplit) {
+  if (!testing::HaveSharedMeshes()) GTEST_SKIP() << "shared meshes absent";
+  auto femur = ReadMesh(testing::SharedPath("meshes/midsize/femur.off.gz"));
+  ASSERT_TRUE(femur.ok()) << femur.status().ToString();
+  EXPECT_LE(FarthestMidpointInEdgeLengths(*femur, 2), 4.0);
+  for (const Shape& s : HardShapes()) EXPECT_LE(FarthestMidpointInEdgeLengths(s.mesh, 2), 4.0) << s.name;
 }
 
 std::vector<uint32_t> FoldedFaces(const TriangleBvh& bvh, const Mesh& input, const Mesh& level) {
