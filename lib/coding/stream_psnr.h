@@ -15,8 +15,8 @@ namespace eqmesh {
 class ReferenceSurface;
 
 // An original prepared once for the meter (metrics' ReferenceSurface): an encode
-// measures every trial stream against one original, and preparing it (search
-// tree, area table) each time cost as much as measuring a small trial.
+// measures every trial stream against one original (a horse --psnr 70 encode
+// 26 times), and its search tree and area table do not change in between.
 struct PreparedOriginal {
   const Mesh* mesh = nullptr;  // what it was prepared from
   std::shared_ptr<const ReferenceSurface> reference;

@@ -65,6 +65,7 @@ class ReferenceSurface {
   StatusOr<SurfaceDistance> Compare(const Mesh& b, const CompareOptions& options = {}) const;
 
  private:
+  ReferenceSurface() = default;
   struct Prepared;
   std::shared_ptr<const Prepared> prepared_;
 };
