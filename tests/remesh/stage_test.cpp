@@ -10,9 +10,9 @@
 
 #include "hard_shapes.h"
 #include "mesh/mesh_topology.h"
+#include "mesh/triangle_bvh.h"
 #include "mesh_io/mesh_io.h"
 #include "metrics/surface_distance.h"
-#include "mesh/triangle_bvh.h"
 #include "remesh/base_domain.h"
 #include "remesh/piercing.h"
 #include "remesh/quality_checks.h"
@@ -174,7 +174,7 @@ TEST(BaseDomain, SpikeTipsStayBaseVertices) {
   }
 }
 
-// One refinement 0 -> 1 from the base, as Remesh runs it.
+// Refinements 0 -> `levels` from the base, as Remesh runs them (no untangling).
 struct PiercedLevel {
   SemiRegularHierarchy hierarchy;
   std::vector<Vec3> positions;
@@ -182,7 +182,7 @@ struct PiercedLevel {
   std::vector<ParamPoint> params;
 };
 
-PiercedLevel PierceOnce(const Mesh& input, const BaseRun& run, const InputSurface& surface) {
+PiercedLevel PierceLevels(const Mesh& input, const BaseRun& run, const InputSurface& surface, int levels) {
   PiercedLevel out;
   std::vector<uint32_t> on_faces;
   for (uint32_t v : run.base.base_to_input) {
@@ -191,14 +191,20 @@ PiercedLevel PierceOnce(const Mesh& input, const BaseRun& run, const InputSurfac
   }
   out.kinds.assign(out.positions.size(), VertexKind::kBase);
   out.params = run.base.params;
-  auto h = SemiRegularHierarchy::Build(static_cast<uint32_t>(out.positions.size()), run.base.faces, 1);
+  auto h = SemiRegularHierarchy::Build(static_cast<uint32_t>(out.positions.size()), run.base.faces, levels);
   EXPECT_TRUE(h.ok()) << h.status().ToString();
   out.hierarchy = std::move(h).value();
-  const StencilTable stencils = BuildButterflyStencils(out.hierarchy, 0);
-  LevelStats stats;
-  RefineLevel(out.hierarchy, 0, surface, RemeshParts(), stencils, &out.positions, &on_faces, &out.kinds, &out.params,
-              &stats);
+  for (int j = 0; j < levels; ++j) {
+    const StencilTable stencils = BuildButterflyStencils(out.hierarchy, j);
+    LevelStats stats;
+    RefineLevel(out.hierarchy, j, surface, RemeshParts(), stencils, &out.positions, &on_faces, &out.kinds,
+                &out.params, &stats);
+  }
   return out;
+}
+
+PiercedLevel PierceOnce(const Mesh& input, const BaseRun& run, const InputSurface& surface) {
+  return PierceLevels(input, run, surface, 1);
 }
 
 TEST(Piercing, NormalVerticesLieOnTheInputAndParametersStayInTheirFaces) {
@@ -236,27 +242,16 @@ TEST(Piercing, NormalVerticesLieOnTheInputAndParametersStayInTheirFaces) {
 double FarthestMidpointInEdgeLengths(const Mesh& input, int levels) {
   const BaseRun run = BuildBase(input, kErrorShare);
   const InputSurface surface(input, run.bvh, std::vector<uint8_t>(input.positions.size(), 0));
-  std::vector<Vec3> positions;
-  std::vector<uint32_t> on_faces;
-  for (uint32_t v : run.base.base_to_input) {
-    positions.push_back(input.positions[v]);
-    on_faces.push_back(surface.vertex_faces[surface.face_offsets[v]]);
-  }
-  std::vector<VertexKind> kinds(positions.size(), VertexKind::kBase);
-  std::vector<ParamPoint> params = run.base.params;
-  auto h = SemiRegularHierarchy::Build(static_cast<uint32_t>(positions.size()), run.base.faces, levels);
-  EXPECT_TRUE(h.ok()) << h.status().ToString();
+  const PiercedLevel pierced = PierceLevels(input, run, surface, levels);
+  const SemiRegularHierarchy& h = pierced.hierarchy;
+  const std::vector<Vec3>& x = pierced.positions;
   double farthest = 0.0;
-  for (int j = 0; h.ok() && j < levels; ++j) {
-    const StencilTable stencils = BuildButterflyStencils(*h, j);
-    LevelStats stats;
-    RefineLevel(*h, j, surface, RemeshParts(), stencils, &positions, &on_faces, &kinds, &params, &stats);
-    for (uint32_t k = 0; k < h->NumOddVertices(j); ++k) {
-      const uint32_t v = h->NumVertices(j) + k;
-      if (kinds[v] != VertexKind::kNonNormal) continue;
-      const Edge& e = h->OddEdge(j, k);
-      const double length = (positions[e[0]] - positions[e[1]]).norm();
-      farthest = std::max(farthest, (positions[v] - 0.5 * (positions[e[0]] + positions[e[1]])).norm() / length);
+  for (int j = 0; j < levels; ++j) {
+    for (uint32_t k = 0; k < h.NumOddVertices(j); ++k) {
+      if (pierced.kinds[h.NumVertices(j) + k] != VertexKind::kNonNormal) continue;
+      const Edge& e = h.OddEdge(j, k);
+      const double length = (x[e[0]] - x[e[1]]).norm();
+      farthest = std::max(farthest, (x[h.NumVertices(j) + k] - 0.5 * (x[e[0]] + x[e[1]])).norm() / length);
     }
   }
   return farthest;
@@ -355,12 +350,6 @@ TEST(Remesh, AFloorAboveTheRemeshHalvesTheBaseBound) {
   EXPECT_GT(floored.psnr_db, first.psnr_db);
   EXPECT_FALSE(floored.notes.empty());
 }
-
-}  // namespace
-}  // namespace eqmesh
-
-namespace eqmesh {
-namespace {
 
 // A remesh read within a dB above the floor at the floor's 100k samples is read
 // again at 1M before the floor counts as met (concentrated errors read high at
