@@ -213,12 +213,6 @@ TEST(CompareSurfaces, ExtremeScalesMeasureAsAtUnitScale) {
   EXPECT_NEAR(huge->psnr_db, unit->psnr_db, 1e-6);
 }
 
-}  // namespace
-}  // namespace eqmesh
-
-namespace eqmesh {
-namespace {
-
 // The encoder measures every trial stream against one original, prepared once:
 // each comparison must give CompareSurfaces' doubles, at ordinary and extreme
 // scales, and errors on the other mesh as CompareSurfaces gives them.
