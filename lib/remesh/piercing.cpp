@@ -44,13 +44,12 @@ constexpr size_t kMaxFineForwardChartFaces = 256;
 constexpr double kMidpointReach = 16.0;
 // ... and one farther than this many edge lengths from the edge's own midpoint
 // too: a prediction can itself lie far off (boundaries, irregular
-// neighbourhoods), and within 16 edge lengths of it a level-1 vertex of
-// dragon_vrip's canonical copy landed 10 edge lengths (1.4 cm, 0.5 % of the
-// diagonal) from its edge, a spike whose faces measured 0.8 % of the diagonal
-// off the input (81.27 dB; 86.73 dB without it). On the mid-size meshes 4 moves
-// only femur, man, mannequin-devil and diplodocus, whose charts send up to 140
-// midpoints 4-17 edge lengths away, and keeps every remesh at or above its PSNR
-// (bench/log/2026-12-06-midpoint-reach.md).
+// neighbourhoods), so a point within 16 edge lengths of it can still be a spike
+// 10 edge lengths from its edge (dragon_vrip's canonical copy: 0.8 % of the
+// diagonal off the input, 5.5 dB of its PSNR). Mid-size charts send up to 140
+// midpoints per remesh 4-17 edge lengths away; 4 leaves every mid-size remesh at
+// or above its PSNR and the bench scans within 0.001 dB, where 2 already folds
+// faces of the cow (measured: bench/log/2026-12-06-midpoint-reach.md).
 constexpr double kMidpointEdgeReach = 4.0;
 
 double Quality2d(const Vec2& a, const Vec2& b, const Vec2& c) {

@@ -69,9 +69,9 @@ constexpr int kFloorRetries = 4;
 constexpr double kFloorReachDb = 20.0;
 // A remesh measured (kLevelPsnrSamples) less than this above the floor is
 // measured again with kFloorConfirmSamples before the floor counts as met:
-// where the error gathers in a few small regions 100k samples can read high
-// (dragon_vrip's canonical copy with a spike: 81.97 dB at 100k, 81.27 at 1M, 81.31
-// at the benchmark's 4.4M), and `eqmesh remesh` reports the meter's default.
+// where the error gathers in a few small regions 100k samples can read high (a
+// dragon_vrip remesh with one spike: 81.97 dB at 100k, 81.27 at 1M, 81.31 at
+// 4.4M), and `eqmesh remesh` reports the meter's default.
 constexpr double kFloorConfirmDb = 1.0;
 constexpr uint64_t kFloorConfirmSamples = 1'000'000;
 // Remeshes with the base bound tightened where the finest level still folds
