@@ -2,7 +2,6 @@
 
 #include <string>
 
-#include "coding/level_synthesis.h"
 #include "wavelet/local_frame.h"
 
 namespace eqmesh {
@@ -21,23 +20,25 @@ AnalyzedLevels AnalyzeAllLevels(const SemiRegularHierarchy& hierarchy,
   return out;
 }
 
-StatusOr<std::vector<Vec3>> EncodeLevelsClosedLoop(const SemiRegularHierarchy& hierarchy,
-                                                   bitstream::TransformId transform,
-                                                   const AnalyzedLevels& truth,
-                                                   std::vector<Vec3> decoded,
-                                                   const LevelCoderFn& coder,
+ClosedLoopSteps::ClosedLoopSteps(const SemiRegularHierarchy& hierarchy, bitstream::TransformId transform) {
+  levels_.reserve(static_cast<size_t>(hierarchy.levels()));
+  for (int j = 0; j < hierarchy.levels(); ++j) levels_.emplace_back(hierarchy, j, transform);
+}
+
+StatusOr<std::vector<Vec3>> EncodeLevelsClosedLoop(const ClosedLoopSteps& steps, const AnalyzedLevels& truth,
+                                                   std::vector<Vec3> decoded, const LevelCoderFn& coder,
                                                    const ProgressFn& progress,
                                                    std::vector<std::vector<uint8_t>>* chunks) {
-  const int levels = hierarchy.levels();
+  const int levels = static_cast<int>(steps.size());
   for (int j = 0; j < levels; ++j) {
     ReportProgress(progress, "encode level " + std::to_string(j + 1), double(j) / levels);
-    const LevelSynthesis synthesis(hierarchy, j, transform);
+    const LevelSynthesis& synthesis = steps.level(j);
     const RefinementStep& step = synthesis.step();
     const std::vector<LocalFrame> frames = synthesis.Frames(decoded);
     std::vector<Vec3> even, prediction;
     step.UndoUpdate(decoded, truth.details[j], &even);
     step.Predict(even, &prediction);
-    const uint32_t first = hierarchy.NumVertices(j);
+    const uint32_t first = step.num_coarse();
     std::vector<Vec3> local(step.num_odd());
     for (uint32_t k = 0; k < local.size(); ++k) {
       local[k] = ToLocal(frames[k], truth.values[j + 1][first + k] - prediction[k]);
@@ -50,6 +51,17 @@ StatusOr<std::vector<Vec3>> EncodeLevelsClosedLoop(const SemiRegularHierarchy& h
     decoded = std::move(fine);
   }
   return decoded;
+}
+
+StatusOr<std::vector<Vec3>> EncodeLevelsClosedLoop(const SemiRegularHierarchy& hierarchy,
+                                                   bitstream::TransformId transform,
+                                                   const AnalyzedLevels& truth,
+                                                   std::vector<Vec3> decoded,
+                                                   const LevelCoderFn& coder,
+                                                   const ProgressFn& progress,
+                                                   std::vector<std::vector<uint8_t>>* chunks) {
+  return EncodeLevelsClosedLoop(ClosedLoopSteps(hierarchy, transform), truth, std::move(decoded), coder, progress,
+                                chunks);
 }
 
 }  // namespace eqmesh

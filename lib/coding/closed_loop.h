@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "coding/bitstream_shared.h"
+#include "coding/level_synthesis.h"
 #include "core/progress.h"
 #include "core/status.h"
 #include "mesh/semi_regular.h"
@@ -41,6 +42,24 @@ using LevelCoderFn = std::function<StatusOr<std::vector<uint8_t>>(
 
 // Runs the loop above from the decoded level-0 values; appends one chunk per level
 // and returns the decoder's finest values.
+// The refinement steps of one hierarchy, one per level. Rate control runs many
+// passes over the same hierarchy; sharing the steps builds each level's
+// stencil tables once instead of once per pass (same sums, same order).
+class ClosedLoopSteps {
+ public:
+  ClosedLoopSteps(const SemiRegularHierarchy& hierarchy, bitstream::TransformId transform);
+  const LevelSynthesis& level(int j) const { return levels_[static_cast<size_t>(j)]; }
+  size_t size() const { return levels_.size(); }
+
+ private:
+  std::vector<LevelSynthesis> levels_;
+};
+
+StatusOr<std::vector<Vec3>> EncodeLevelsClosedLoop(const ClosedLoopSteps& steps, const AnalyzedLevels& truth,
+                                                   std::vector<Vec3> decoded_base, const LevelCoderFn& coder,
+                                                   const ProgressFn& progress,
+                                                   std::vector<std::vector<uint8_t>>* chunks);
+// The same for a single pass (the steps built for it).
 StatusOr<std::vector<Vec3>> EncodeLevelsClosedLoop(const SemiRegularHierarchy& hierarchy,
                                                    bitstream::TransformId transform,
                                                    const AnalyzedLevels& truth,

@@ -33,7 +33,7 @@ add_library(eqmesh_encoder STATIC
   ${EQMESH_CODEC_DIR}/representation_choice.cpp
   ${EQMESH_CODEC_DIR}/stream_psnr.cpp
   ${EQMESH_CODEC_DIR}/rate_control.cpp)
-target_link_libraries(eqmesh_encoder PUBLIC eqmesh_decoder eqmesh_eq_encoder PRIVATE draco::draco)
+target_link_libraries(eqmesh_encoder PUBLIC eqmesh_decoder eqmesh_eq_encoder eqmesh_threads PRIVATE draco::draco)
 # lib/remesh is added after lib/coding, so test for its directory, not its target.
 if(EXISTS "${PROJECT_SOURCE_DIR}/lib/remesh/CMakeLists.txt")
   target_link_libraries(eqmesh_encoder PUBLIC eqmesh_remesh)

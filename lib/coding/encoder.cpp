@@ -50,19 +50,29 @@ struct Prepared {
   bool kept_compact = false;
 };
 
-// Step 2's result for one base order; passes at different lambdas usually share it.
+// Step 2's result for one base order; passes at different lambdas usually share
+// it, and with it what depends on the connectivity alone: the refinement steps
+// and the EQ coder's level layouts (built on the first pass that needs them).
 struct Renumbered {
   std::vector<uint32_t> decoded_to_input;
   std::vector<Face> faces;
   SemiRegularMesh mesh;
   AnalyzedLevels truth;
+  std::optional<ClosedLoopSteps> steps;  // refers to mesh.hierarchy: set once in place
+  std::vector<std::optional<EqLevelLayout>> eq_layouts;
+
+  StatusOr<const EqLevelLayout*> EqLayout(int j) {
+    std::optional<EqLevelLayout>& layout = eq_layouts[static_cast<size_t>(j)];
+    if (!layout) {
+      EQMESH_ASSIGN_OR_RETURN(layout, BuildEqLevelLayout(mesh.hierarchy, j));
+    }
+    return &*layout;
+  }
 };
 
-StatusOr<const Renumbered*> RenumberCached(const SemiRegularMesh& mesh,
-                                           bitstream::TransformId transform,
-                                           const MeshChunkEncoding& base,
-                                           std::deque<Renumbered>* cache) {
-  for (const Renumbered& r : *cache) {
+StatusOr<Renumbered*> RenumberCached(const SemiRegularMesh& mesh, bitstream::TransformId transform,
+                                     const MeshChunkEncoding& base, std::deque<Renumbered>* cache) {
+  for (Renumbered& r : *cache) {
     if (r.decoded_to_input == base.decoded_to_input && r.faces == base.decoded.faces) return &r;
   }
   Renumbered r;
@@ -70,8 +80,12 @@ StatusOr<const Renumbered*> RenumberCached(const SemiRegularMesh& mesh,
   r.faces = base.decoded.faces;
   EQMESH_ASSIGN_OR_RETURN(r.mesh, RenumberToBase(mesh, base.decoded_to_input, base.decoded.faces));
   r.truth = AnalyzeAllLevels(r.mesh.hierarchy, r.mesh.positions, transform);
+  r.eq_layouts.resize(static_cast<size_t>(r.mesh.hierarchy.levels()));
   cache->push_back(std::move(r));
-  return &cache->back();
+  // A deque keeps its elements in place, so the steps may refer to the stored mesh.
+  Renumbered& stored = cache->back();
+  stored.steps.emplace(stored.mesh.hierarchy, transform);
+  return &stored;
 }
 
 Status Validate(const SemiRegularMesh& mesh, const EncodeOptions& options) {
@@ -267,18 +281,20 @@ StatusOr<Pass> EncodeAtCode(const Prepared& prep, const EncodeOptions& options, 
                                  header.has_tangential_context()};
   BaseRdReport base_report;
   const MeshChunkEncoding& base = ChooseBase(prep, header, &base_report);
-  EQMESH_ASSIGN_OR_RETURN(const Renumbered* target,
-                          RenumberCached(*prep.mesh, options.transform, base, cache));
+  EQMESH_ASSIGN_OR_RETURN(Renumbered* const target, RenumberCached(*prep.mesh, options.transform, base, cache));
   const SemiRegularHierarchy& h = target->mesh.hierarchy;
   const LevelCoderFn coder = [&](int j, const std::vector<Vec3>& local,
-                                 std::vector<Vec3>* reconstructed) {
-    return EncodeLevelCoefficients(params, h, j, local, reconstructed);
+                                 std::vector<Vec3>* reconstructed) -> StatusOr<std::vector<uint8_t>> {
+    const EqLevelLayout* layout = nullptr;
+    if (params.coder == bitstream::CoderId::kEq) {
+      EQMESH_ASSIGN_OR_RETURN(layout, target->EqLayout(j));
+    }
+    return EncodeLevelCoefficients(params, h, j, local, reconstructed, layout);
   };
   std::vector<std::vector<uint8_t>> chunks;
-  EQMESH_RETURN_IF_ERROR(EncodeLevelsClosedLoop(h, options.transform, target->truth,
-                                                base.decoded.positions, coder, options.progress,
-                                                &chunks)
-                             .status());
+  EQMESH_RETURN_IF_ERROR(
+      EncodeLevelsClosedLoop(*target->steps, target->truth, base.decoded.positions, coder, options.progress, &chunks)
+          .status());
   return FinishPass(header, prep, base, chunks, base_report, options);
 }
 
@@ -306,14 +322,13 @@ StatusOr<Pass> EncodeZerotreeAtCode(const Prepared& prep, const EncodeOptions& o
   const StreamHeader header = MakeHeader(prep, options, code);
   BaseRdReport base_report;
   const MeshChunkEncoding& base = ChooseBase(prep, header, &base_report);
-  EQMESH_ASSIGN_OR_RETURN(const Renumbered* target,
-                          RenumberCached(*prep.mesh, options.transform, base, cache));
+  EQMESH_ASSIGN_OR_RETURN(const Renumbered* target, RenumberCached(*prep.mesh, options.transform, base, cache));
   const SemiRegularHierarchy& h = target->mesh.hierarchy;
   std::vector<std::vector<uint8_t>> chunks(static_cast<size_t>(h.levels()));
   *last_plane = 0;
   if (h.levels() > 0) {
     ReportProgress(options.progress, "encode zerotree", 0.0);
-    EQMESH_ASSIGN_OR_RETURN(const auto coeffs, ZerotreeCoefficients(h, options.transform, target->truth,
+    EQMESH_ASSIGN_OR_RETURN(const auto coeffs, ZerotreeCoefficients(*target->steps, target->truth,
                                                                     base.decoded.positions));
     ZerotreeOptions zo;
     zo.quantum = static_cast<double>(header.quantum);

@@ -7,7 +7,6 @@
 
 #include "coding/entropy/range_coder.h"
 #include "coding/eq/eq_encoder.h"
-#include "coding/eq/eq_layout.h"
 #include "coding/uniform_model.h"
 
 namespace eqmesh {
@@ -67,11 +66,9 @@ int32_t LevelLambdaOffset(int levels, int j) {
   return kLevelLambdaCodePerLevel * (levels - 1 - j);
 }
 
-StatusOr<std::vector<uint8_t>> EncodeEq(const LevelCodingParams& params,
-                                        const SemiRegularHierarchy& hierarchy, int j,
-                                        const std::vector<Vec3>& local,
+StatusOr<std::vector<uint8_t>> EncodeEq(const LevelCodingParams& params, const SemiRegularHierarchy& hierarchy,
+                                        int j, const EqLevelLayout& layout, const std::vector<Vec3>& local,
                                         std::vector<Vec3>* reconstructed) {
-  EQMESH_ASSIGN_OR_RETURN(EqLevelLayout layout, BuildEqLevelLayout(hierarchy, j));
   EqEncodeOptions options;
   // Both codes are 16 log2(lambda q0^2): the header's code is the EQ code.
   options.lambda_code = static_cast<int32_t>(params.lambda_code) + LevelLambdaOffset(hierarchy.levels(), j);
@@ -87,15 +84,24 @@ StatusOr<std::vector<uint8_t>> EncodeEq(const LevelCodingParams& params,
 StatusOr<std::vector<uint8_t>> EncodeLevelCoefficients(const LevelCodingParams& params,
                                                        const SemiRegularHierarchy& hierarchy,
                                                        int j, const std::vector<Vec3>& local,
-                                                       std::vector<Vec3>* reconstructed) {
+                                                       std::vector<Vec3>* reconstructed,
+                                                       const EqLevelLayout* eq_layout) {
   if (local.size() != hierarchy.NumOddVertices(j)) {
     return InternalError("level " + std::to_string(j) + " coefficient count mismatch");
   }
   switch (params.coder) {
     case bitstream::CoderId::kUniform:
       return EncodeUniform(params, local, reconstructed);
-    case bitstream::CoderId::kEq:
-      return EncodeEq(params, hierarchy, j, local, reconstructed);
+    case bitstream::CoderId::kEq: {
+      if (eq_layout != nullptr) {
+        if (eq_layout->level != j || eq_layout->size() != local.size()) {
+          return InternalError("level " + std::to_string(j) + " coded with another level's layout");
+        }
+        return EncodeEq(params, hierarchy, j, *eq_layout, local, reconstructed);
+      }
+      EQMESH_ASSIGN_OR_RETURN(const EqLevelLayout layout, BuildEqLevelLayout(hierarchy, j));
+      return EncodeEq(params, hierarchy, j, layout, local, reconstructed);
+    }
     case bitstream::CoderId::kZerotree:
       break;
   }

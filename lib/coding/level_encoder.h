@@ -4,16 +4,20 @@
 #include <cstdint>
 #include <vector>
 
+#include "coding/eq/eq_layout.h"
 #include "coding/level_decoder.h"
 
 namespace eqmesh {
 
 // Codes the local coefficients of refinement j -> j+1 and returns the chunk;
 // *reconstructed receives exactly what DecodeLevelCoefficients will return for it
-// (the closed loop continues from those values).
+// (the closed loop continues from those values). `eq_layout`, when given, is
+// BuildEqLevelLayout(hierarchy, j), built once by a caller that codes the level
+// many times.
 StatusOr<std::vector<uint8_t>> EncodeLevelCoefficients(const LevelCodingParams& params,
                                                        const SemiRegularHierarchy& hierarchy,
                                                        int j, const std::vector<Vec3>& local,
-                                                       std::vector<Vec3>* reconstructed);
+                                                       std::vector<Vec3>* reconstructed,
+                                                       const EqLevelLayout* eq_layout = nullptr);
 
 }  // namespace eqmesh

@@ -6,8 +6,7 @@
 
 namespace eqmesh {
 
-StatusOr<std::vector<std::vector<Vec3>>> ZerotreeCoefficients(const SemiRegularHierarchy& hierarchy,
-                                                              bitstream::TransformId transform,
+StatusOr<std::vector<std::vector<Vec3>>> ZerotreeCoefficients(const ClosedLoopSteps& steps,
                                                               const AnalyzedLevels& truth,
                                                               const std::vector<Vec3>& decoded_base) {
   std::vector<std::vector<Vec3>> coeffs;
@@ -18,7 +17,7 @@ StatusOr<std::vector<std::vector<Vec3>>> ZerotreeCoefficients(const SemiRegularH
   };
   std::vector<std::vector<uint8_t>> unused;
   EQMESH_RETURN_IF_ERROR(
-      EncodeLevelsClosedLoop(hierarchy, transform, truth, decoded_base, lossless, {}, &unused).status());
+      EncodeLevelsClosedLoop(steps, truth, decoded_base, lossless, {}, &unused).status());
   return coeffs;
 }
 

@@ -37,9 +37,8 @@
 namespace eqmesh {
 
 // coeffs[j][k]: local (normal, tangent, bitangent) detail of odd vertex k of
-// refinement j, world units, as described above.
-StatusOr<std::vector<std::vector<Vec3>>> ZerotreeCoefficients(const SemiRegularHierarchy& hierarchy,
-                                                              bitstream::TransformId transform,
+// refinement j, world units, as described above; `steps` are the hierarchy's.
+StatusOr<std::vector<std::vector<Vec3>>> ZerotreeCoefficients(const ClosedLoopSteps& steps,
                                                               const AnalyzedLevels& truth,
                                                               const std::vector<Vec3>& decoded_base);
 

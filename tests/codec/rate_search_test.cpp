@@ -81,5 +81,72 @@ TEST(RateSearch, InfiniteQualityIsBisectedNotInterpolated) {
   EXPECT_EQ(got->lambda_code, 9);
 }
 
+RateEvaluator SizeEvaluating(const Curve& bpv, int* calls) {
+  return [bpv, calls](int64_t code) -> StatusOr<RatePoint> {
+    ++*calls;
+    RatePoint p;
+    p.lambda_code = code;
+    p.bpv = bpv(code);
+    return p;
+  };
+}
+
+// bpv doubling every `codes` codes, 1 bpv at code 0.
+Curve SizeDoublingEvery(double codes) {
+  return [codes](int64_t c) { return std::exp2(static_cast<double>(c) / codes); };
+}
+
+TEST(RateSearch, RateSearchOnTheModelsSlopeNeedsTwoEvaluations) {
+  // The first point and the one the size model steps to, from up to eight
+  // octaves of lambda away.
+  for (const double target : {0.25, 0.6, 1.0, 2.5, 8.0}) {
+    const auto answer = static_cast<int64_t>(std::lround(36.0 * std::log2(target)));
+    for (const int64_t start : {answer - 120, answer - 30, answer + 5, answer + 60, answer + 128}) {
+      int calls = 0;
+      auto got = SearchForRate(SizeEvaluating(SizeDoublingEvery(36.0), &calls), target, start, 0.03);
+      ASSERT_TRUE(got.ok());
+      EXPECT_LE(std::abs(got->bpv - target), 0.03 * target) << "target " << target << " from " << start;
+      EXPECT_LE(calls, 2) << "target " << target << " from " << start;
+    }
+  }
+}
+
+TEST(RateSearch, RateSearchFindsTheTargetOnOtherSlopes) {
+  // Steeper and flatter than the model: the secant through the first two points
+  // corrects the slope, and interpolation closes the bracket.
+  for (const double codes : {12.0, 20.0, 70.0, 120.0}) {
+    for (const double target : {0.3, 1.7, 5.0}) {
+      int calls = 0;
+      auto got = SearchForRate(SizeEvaluating(SizeDoublingEvery(codes), &calls), target, -40, 0.03);
+      ASSERT_TRUE(got.ok());
+      // A code moves the size by 2^(1/codes): within 3 % needs codes >= 12.
+      EXPECT_LE(std::abs(got->bpv - target), 0.03 * target) << codes << " codes per doubling, target " << target;
+      EXPECT_LE(calls, 6) << codes << " codes per doubling, target " << target;
+    }
+  }
+}
+
+TEST(RateSearch, RateSearchBeyondASaturatedSizeReturnsTheLargestItSaw) {
+  // Every coefficient coded: more lambda adds nothing (a coarse level count at a
+  // high rate target). The search ends at the code range or its evaluation cap.
+  const Curve saturated = [](int64_t c) { return std::min(std::exp2(static_cast<double>(c) / 36.0), 0.5); };
+  int calls = 0;
+  auto got = SearchForRate(SizeEvaluating(saturated, &calls), 2.0, -96, 0.03);
+  ASSERT_TRUE(got.ok());
+  EXPECT_DOUBLE_EQ(got->bpv, 0.5);
+  EXPECT_LE(calls, 12);
+}
+
+TEST(RateSearch, RateSearchAcrossAJumpReturnsTheNearerSide) {
+  // No code lands within tolerance (most coefficients leave the dead zone at
+  // once): the nearer of the two sides comes back.
+  const Curve jump = [](int64_t c) { return c < 10 ? 0.8 * std::exp2(static_cast<double>(c) / 200.0) : 1.6; };
+  int calls = 0;
+  auto got = SearchForRate(SizeEvaluating(jump, &calls), 1.0, -60, 0.03);
+  ASSERT_TRUE(got.ok());
+  EXPECT_EQ(got->lambda_code, 9);
+  EXPECT_LE(calls, 40);
+}
+
 }  // namespace
 }  // namespace eqmesh
