@@ -451,9 +451,14 @@ StatusOr<std::optional<Pass>> MatchRateWithTangential(const Prepared& prep, cons
   std::vector<Pass> passes;
   std::vector<int64_t> pass_u;
   RateEvaluator eval = [&](int64_t u) -> StatusOr<RatePoint> {
-    EncodeOptions o = options;
-    o.tangential_factor = FromLogCode(std::clamp(start - u, -bitstream::kMaxLogCode, bitstream::kMaxLogCode));
-    EQMESH_ASSIGN_OR_RETURN(Pass pass, EncodeAtCode(prep, o, lambda_code, cache));
+    Pass pass;
+    if (u == 0) {
+      pass = nearest;  // the search starts at the pass it refines: no need to code it again
+    } else {
+      EncodeOptions o = options;
+      o.tangential_factor = FromLogCode(std::clamp(start - u, -bitstream::kMaxLogCode, bitstream::kMaxLogCode));
+      EQMESH_ASSIGN_OR_RETURN(pass, EncodeAtCode(prep, o, lambda_code, cache));
+    }
     RatePoint point;
     point.lambda_code = u;
     point.bpv = pass.report.bpv;
@@ -463,7 +468,7 @@ StatusOr<std::optional<Pass>> MatchRateWithTangential(const Prepared& prep, cons
   };
   RateSearchReport search;
   EQMESH_ASSIGN_OR_RETURN(const RatePoint chosen, SearchForRate(eval, options.target_bpv, 0, kBpvTolerance, &search));
-  *evaluations += search.evaluations;
+  *evaluations += search.evaluations - 1;  // the first, u = 0, was `nearest`
   if (std::abs(chosen.bpv - options.target_bpv) >= std::abs(nearest.report.bpv - options.target_bpv)) {
     return std::optional<Pass>();
   }

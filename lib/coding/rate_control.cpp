@@ -10,7 +10,6 @@
 namespace eqmesh {
 namespace {
 
-constexpr int64_t kBracketStep = 16;  // one octave of lambda
 constexpr int kMaxEvaluations = 40;
 constexpr int64_t kQualityResolution = 1;  // one code: ~4.4 % of lambda
 
@@ -33,70 +32,99 @@ class Prober {
 
 bool InRange(int64_t code) { return code >= -bitstream::kMaxLogCode && code <= bitstream::kMaxLogCode; }
 
-// Finds lo < hi with pred(lo) false and pred(hi) true, by doubling steps from the
-// start; pred must be monotone (false ... true) in the code. Returns false if the
-// range ends first (the last point evaluated is then in *lo or *hi).
-template <typename Pred>
-StatusOr<bool> Bracket(Prober& probe, const Pred& pred, int64_t start, RatePoint* lo, RatePoint* hi) {
-  EQMESH_ASSIGN_OR_RETURN(RatePoint p, probe(start));
-  const bool up = !pred(p);
-  int64_t step = kBracketStep;
-  RatePoint prev = std::move(p);
-  while (!probe.exhausted()) {
-    const int64_t next = prev.lambda_code + (up ? step : -step);
-    if (!InRange(next)) break;
-    EQMESH_ASSIGN_OR_RETURN(RatePoint q, probe(next));
-    if (pred(q) == up) {
-      *lo = up ? std::move(prev) : std::move(q);
-      *hi = up ? std::move(q) : std::move(prev);
-      return true;
-    }
-    prev = std::move(q);
-    step *= 2;
+// How a search steps toward its target before it has bracketed it: the
+// quantity it reads off a point, the model's slope of that quantity per code,
+// and the secant slopes (through the last two points) it trusts instead. A
+// secant steeper than trusted says the quantity jumps there: the model steps
+// better. A flatter one says it is saturating (every coefficient coded, or the
+// stream near its level count's ceiling): steps of one octave of lambda then,
+// doubling each time, so a flat stretch is crossed, or the code range's end
+// reached, in a few evaluations.
+struct StepModel {
+  double (*value)(const RatePoint&);
+  double per_code;
+  double min_secant, max_secant;
+  int64_t first_limit;  // largest model step at first; it doubles after every step
+};
+
+double LogSize(const RatePoint& p) { return p.bpv > 0 ? std::log2(p.bpv) : -std::numeric_limits<double>::infinity(); }
+double Quality(const RatePoint& p) { return p.psnr_db; }
+
+// The rate model: 4x lambda (32 codes) roughly doubles an EQ stream; horse's
+// 4- to 6-level streams measure 35-43 codes per doubling between 0.4 and 7 bpv.
+// Its first step may span eight octaves of lambda, more than lies between 1/64
+// (the default lambda) and any rate from 0.1 to 10 bpv on the bench meshes.
+constexpr StepModel kRateModel{LogSize, 1.0 / 36.0, 1.0 / 160.0, 1.0 / 8.0, 128};
+// The quality search steps by octaves of lambda, doubling (no model): a model
+// of 0.12 dB per code (horse's 3- to 6-level streams below their ceilings) took
+// as many measured evaluations on horse's --psnr 70 encode, more near a
+// ceiling, where PSNR barely moves with the code.
+constexpr StepModel kQualityModel{Quality, 0.0, 0.0, 0.0, 0};
+
+// Value change per code from the secant through two points where it is
+// trusted; the model's where it is too steep or there is no previous point;
+// zero where it is too flat or there is no model.
+double SlopePerCode(const StepModel& model, const RatePoint* previous, const RatePoint& p) {
+  if (model.per_code == 0.0) return 0.0;
+  if (previous == nullptr) return model.per_code;
+  const double a = model.value(*previous), b = model.value(p);
+  if (!std::isfinite(a) || !std::isfinite(b)) return model.per_code;
+  const double slope = (b - a) / static_cast<double>(p.lambda_code - previous->lambda_code);
+  if (slope < model.min_secant) return slope < 0 ? model.per_code : 0.0;
+  return slope <= model.max_secant ? slope : model.per_code;
+}
+
+constexpr int64_t kFlatStep = 16;  // one octave of lambda
+
+// The code where the slope puts `target` from p, at least one code and at most
+// `limit` codes away in direction `up`; `flat_step` codes away (then doubled)
+// where the secant is too flat to say.
+int64_t StepToward(const StepModel& model, const RatePoint* previous, const RatePoint& p, double target, bool up,
+                   int64_t limit, int64_t* flat_step) {
+  const double slope = SlopePerCode(model, previous, p);
+  int64_t step = limit;
+  if (slope == 0.0) {
+    step = *flat_step;
+    *flat_step *= 2;
+  } else if (const double codes = std::abs((target - model.value(p)) / slope); std::isfinite(codes)) {
+    const double bounded = std::min(codes, static_cast<double>(limit));
+    step = std::clamp<int64_t>(std::llround(bounded), 1, limit);
   }
-  *lo = prev;
-  *hi = std::move(prev);
-  return false;
-}
-
-}  // namespace
-
-namespace {
-
-// Codes per doubling of the stream's size, the model the rate search steps by:
-// 4x lambda (32 codes) roughly doubles an EQ stream; horse's 4- to 6-level
-// streams measure 35-43 codes per doubling between 0.4 and 7 bpv.
-constexpr double kCodesPerRateDoubling = 36.0;
-// A secant through the last two points replaces the model where its slope
-// (codes per doubling) is plausible. A steeper one says the size jumps there
-// (most coefficients leaving the dead zone at once): the model steps better. A
-// flatter one, or none, says the size is saturating (every coefficient coded):
-// the step then follows the doubling schedule of its limit.
-constexpr double kMinSecantCodes = 8.0;
-constexpr double kMaxSecantCodes = 160.0;
-// Largest first step: eight octaves of lambda, more than the model puts between
-// 1/64 (the default lambda) and any rate from 0.1 to 10 bpv on the bench meshes;
-// it doubles after each step that does not cross the target.
-constexpr int64_t kFirstRateStepLimit = 128;
-
-// Codes per doubling of the size from the secant through two points (infinite
-// where the size did not grow), or the model's.
-double CodesPerDoubling(const RatePoint* previous, const RatePoint& p) {
-  if (previous == nullptr || !(previous->bpv > 0) || !(p.bpv > 0)) return kCodesPerRateDoubling;
-  if (previous->bpv == p.bpv) return std::numeric_limits<double>::infinity();
-  const double slope = static_cast<double>(p.lambda_code - previous->lambda_code) / std::log2(p.bpv / previous->bpv);
-  if (slope > kMaxSecantCodes) return std::numeric_limits<double>::infinity();
-  return slope >= kMinSecantCodes ? slope : kCodesPerRateDoubling;
-}
-
-// The code the size model puts the target at, from p, at least one code and at
-// most `limit` codes away, in the direction of the target.
-int64_t ModelStepToward(const RatePoint* previous, const RatePoint& p, double target, int64_t limit) {
-  const bool up = p.bpv < target;
-  double codes = static_cast<double>(limit);
-  if (p.bpv > 0) codes = std::abs(CodesPerDoubling(previous, p) * std::log2(target / p.bpv));
-  const int64_t step = std::clamp<int64_t>(std::llround(std::min(codes, static_cast<double>(limit))), 1, limit);
   return p.lambda_code + (up ? step : -step);
+}
+
+enum class BracketEnd { kBracketed, kFound, kRangeEnd };
+
+// From `start`, steps by the model toward `target` (the model's value) until a
+// point is `found` (returned in *hi) or lies across the target: lo < hi with
+// pred(lo) false and pred(hi) true, pred monotone (false ... true) in the code.
+// At the range's end or the evaluation cap the last point is in *lo and *hi.
+template <typename Pred, typename Found>
+StatusOr<BracketEnd> Bracket(Prober& probe, const StepModel& model, double target, const Pred& pred,
+                             const Found& found, int64_t start, RatePoint* lo, RatePoint* hi) {
+  EQMESH_ASSIGN_OR_RETURN(RatePoint p, probe(start));
+  std::optional<RatePoint> previous;
+  const bool up = !pred(p);
+  int64_t flat_step = kFlatStep;
+  for (int64_t limit = model.first_limit;; limit *= 2) {
+    if (found(p)) {
+      *hi = std::move(p);
+      return BracketEnd::kFound;
+    }
+    const int64_t next = StepToward(model, previous ? &*previous : nullptr, p, target, up, limit, &flat_step);
+    if (probe.exhausted() || !InRange(next)) break;
+    EQMESH_ASSIGN_OR_RETURN(RatePoint q, probe(next));
+    if (pred(q) == up && !found(q)) {
+      *lo = up ? std::move(p) : std::move(q);
+      *hi = up ? std::move(q) : std::move(p);
+      return BracketEnd::kBracketed;
+    }
+    previous = std::move(p);
+    p = std::move(q);
+  }
+  *lo = p;
+  *hi = std::move(p);
+  return BracketEnd::kRangeEnd;
 }
 
 }  // namespace
@@ -110,29 +138,11 @@ StatusOr<RatePoint> SearchForRate(const RateEvaluator& eval, double target_bpv, 
     return std::abs(p.bpv - target_bpv) <= rel_tolerance * target_bpv;
   };
   auto reaches = [&](const RatePoint& p) { return p.bpv >= target_bpv; };
-  // Bracket: step where the size model puts the target (a secant once two
-  // points are known) until a point lands within tolerance or across the target.
-  EQMESH_ASSIGN_OR_RETURN(RatePoint p, probe(start_code));
-  if (consider(p)) return p;
-  const bool up = !reaches(p);
-  std::optional<RatePoint> previous;
   RatePoint lo, hi;
-  bool bracketed = false;
-  for (int64_t limit = kFirstRateStepLimit; !probe.exhausted(); limit *= 2) {
-    const int64_t next = ModelStepToward(previous ? &*previous : nullptr, p, target_bpv, limit);
-    if (!InRange(next)) break;
-    EQMESH_ASSIGN_OR_RETURN(RatePoint q, probe(next));
-    if (consider(q)) return q;
-    if (reaches(q) == up) {
-      lo = up ? std::move(p) : std::move(q);
-      hi = up ? std::move(q) : std::move(p);
-      bracketed = true;
-      break;
-    }
-    previous = std::move(p);
-    p = std::move(q);
-  }
-  if (!bracketed) return *best;
+  EQMESH_ASSIGN_OR_RETURN(const BracketEnd end,
+                          Bracket(probe, kRateModel, std::log2(target_bpv), reaches, consider, start_code, &lo, &hi));
+  if (end == BracketEnd::kFound) return hi;
+  if (end == BracketEnd::kRangeEnd) return *best;
   bool interpolate = true;
   while (hi.lambda_code - lo.lambda_code > 1 && !probe.exhausted()) {
     // log(bpv) is close to linear in the code: interpolate, but alternate with
@@ -172,8 +182,10 @@ StatusOr<RatePoint> SearchForQuality(const RateEvaluator& eval, double target_ps
   Prober probe(eval, report);
   auto meets = [&](const RatePoint& p) { return p.psnr_db >= target_psnr; };
   RatePoint lo, hi;
-  EQMESH_ASSIGN_OR_RETURN(bool bracketed, Bracket(probe, meets, start_code, &lo, &hi));
-  if (!bracketed) return hi;
+  const auto never = [](const RatePoint&) { return false; };
+  EQMESH_ASSIGN_OR_RETURN(const BracketEnd end,
+                          Bracket(probe, kQualityModel, target_psnr, meets, never, start_code, &lo, &hi));
+  if (end != BracketEnd::kBracketed) return hi;
   auto open = [&] { return hi.lambda_code - lo.lambda_code > kQualityResolution && !probe.exhausted(); };
   auto narrow = [&](int64_t code) -> Status {
     EQMESH_ASSIGN_OR_RETURN(RatePoint p, probe(code));
