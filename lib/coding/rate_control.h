@@ -1,8 +1,9 @@
 // Rate control: choose the R-D slope lambda that meets a size or quality target.
 //
 // lambda travels in the header as a log2 code (bitstream_shared.h), so the search
-// runs over integer codes: bracket by doubling steps, then narrow the bracket by
-// interpolation kept in check by bisection (rate_control.cpp). Both the rate
+// runs over integer codes: bracket (a size target steps where a model of the
+// stream's growth puts it; a quality target by doubling steps), then narrow the
+// bracket by interpolation kept in check by bisection (rate_control.cpp). Both the rate
 // and the quality grow (almost) monotonically with lambda; where they do not, the
 // search still terminates and returns the best point it saw.
 #pragma once
@@ -28,7 +29,8 @@ struct RateSearchReport {
   int evaluations = 0;
 };
 
-// The point whose bpv is within rel_tolerance of target_bpv (closest otherwise).
+// The first point found whose bpv is within rel_tolerance of target_bpv (the
+// closest one seen otherwise).
 StatusOr<RatePoint> SearchForRate(const RateEvaluator& eval, double target_bpv, int64_t start_code,
                                   double rel_tolerance = 0.03, RateSearchReport* report = nullptr);
 

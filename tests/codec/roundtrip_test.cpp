@@ -35,6 +35,42 @@ TEST_P(ClosedLoop, WithoutQuantizationReproducesTheMesh) {
   EXPECT_EQ(chunks.size(), 3u);
 }
 
+TEST_P(ClosedLoop, StepsSharedAcrossPassesCodeAsFreshStepsDo) {
+  // Rate control runs many passes over one hierarchy with the same steps; the
+  // later passes apply the stencil tables the first one built. Every pass must
+  // code and reconstruct exactly as a single pass with steps of its own.
+  const SemiRegularMesh mesh = testing::MakeBumpySphere(3);
+  const AnalyzedLevels truth = AnalyzeAllLevels(mesh.hierarchy, mesh.positions, GetParam());
+  const double step = 1e-3 * testing::Diagonal(mesh.positions);
+  const LevelCoderFn quantizing = [step](int, const std::vector<Vec3>& local, std::vector<Vec3>* out) {
+    std::vector<uint8_t> chunk;
+    out->resize(local.size());
+    for (size_t k = 0; k < local.size(); ++k) {
+      for (int c = 0; c < 3; ++c) {
+        const double q = std::round(local[k][c] / step);
+        (*out)[k][c] = q * step;
+        chunk.push_back(static_cast<uint8_t>(static_cast<int64_t>(q) & 0xff));
+      }
+    }
+    return StatusOr<std::vector<uint8_t>>(std::move(chunk));
+  };
+  std::vector<std::vector<uint8_t>> fresh_chunks;
+  auto fresh = EncodeLevelsClosedLoop(mesh.hierarchy, GetParam(), truth, truth.values[0], quantizing, {},
+                                      &fresh_chunks);
+  ASSERT_TRUE(fresh.ok()) << fresh.status().ToString();
+  const ClosedLoopSteps steps(mesh.hierarchy, GetParam());
+  for (int pass = 0; pass < 3; ++pass) {
+    std::vector<std::vector<uint8_t>> chunks;
+    auto shared = EncodeLevelsClosedLoop(steps, truth, truth.values[0], quantizing, {}, &chunks);
+    ASSERT_TRUE(shared.ok()) << shared.status().ToString();
+    EXPECT_EQ(chunks, fresh_chunks) << "pass " << pass;
+    ASSERT_EQ(shared->size(), fresh->size());
+    for (size_t v = 0; v < fresh->size(); ++v) {
+      ASSERT_EQ((*shared)[v], (*fresh)[v]) << "pass " << pass << ", vertex " << v;
+    }
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Kinds, ClosedLoop,
                          ::testing::Values(TransformId::kUnlifted, TransformId::kLifted));
 
