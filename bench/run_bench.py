@@ -740,7 +740,7 @@ def write_summary(bench, started, path):
              "`%s` (zerotree coder: %s; .srm reuse: %s; encode to GLB: %s)." % (
                  " --quick" if args.quick else "", started.strftime("%Y-%m-%d %H:%M"), machine(),
                  tool_versions(), os.path.relpath(args.eqmesh, ROOT),
-                 *("yes" if bench.caps[k] else "no" for k in ("zerotree", "srm", "glb"))))
+                 *(cap_word(bench.caps[k]) for k in ("zerotree", "srm", "glb"))))
     L.append("")
     L.append("Every codec codes the canonical original (`eqmesh convert IN canon.ply`: positions "
              "and triangles, unreferenced vertices dropped). PSNR = 20 log10(bbox diagonal / "
@@ -1013,6 +1013,11 @@ def write_outputs(bench, started):
     return csv_path, summary, pngs
 
 
+def cap_word(cap):
+    """yes / no for a capability of the binary; None: not known (merged rows)."""
+    return "as in log.txt" if cap is None else ("yes" if cap else "no")
+
+
 def report_from_csv(args):
     """Rebuilds summary.md and the plots from earlier results.csv files (e.g. meshes run by
     separate invocations) without running any codec."""
@@ -1041,8 +1046,9 @@ def report_from_csv(args):
     args.eqmesh = args.eqmesh or "(from %s)" % ", ".join(args.from_csv)
     bench.args = args
     bench.write_csv = lambda: Bench.write_csv(bench)
+    # Whether the merged runs reused their remesh is in their log.txt, not in the rows.
     bench.caps = {"zerotree": any((r["variant"] or "").startswith("zerotree") for r in rows),
-                  "srm": False, "convert": True,
+                  "srm": None, "convert": True,
                   "glb": any(r["codec"] == "eqmesh" and r["bytes_glb"] for r in rows)}
     for r in rows:
         m = bench.meta.setdefault(r["mesh"], {"name": r["mesh"], "vertices": r["input_vertices"],
