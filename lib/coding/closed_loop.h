@@ -40,11 +40,10 @@ AnalyzedLevels AnalyzeAllLevels(const SemiRegularHierarchy& hierarchy,
 using LevelCoderFn = std::function<StatusOr<std::vector<uint8_t>>(
     int j, const std::vector<Vec3>& local, std::vector<Vec3>* reconstructed)>;
 
-// Runs the loop above from the decoded level-0 values; appends one chunk per level
-// and returns the decoder's finest values.
 // The refinement steps of one hierarchy, one per level. Rate control runs many
 // passes over the same hierarchy; sharing the steps builds each level's
-// stencil tables once instead of once per pass (same sums, same order).
+// stencil tables once instead of once per pass (same sums, same order). The
+// steps refer to `hierarchy`, which must outlive them.
 class ClosedLoopSteps {
  public:
   ClosedLoopSteps(const SemiRegularHierarchy& hierarchy, bitstream::TransformId transform);
@@ -55,6 +54,8 @@ class ClosedLoopSteps {
   std::vector<LevelSynthesis> levels_;
 };
 
+// Runs the loop above from the decoded level-0 values; appends one chunk per level
+// and returns the decoder's finest values.
 StatusOr<std::vector<Vec3>> EncodeLevelsClosedLoop(const ClosedLoopSteps& steps, const AnalyzedLevels& truth,
                                                    std::vector<Vec3> decoded_base, const LevelCoderFn& coder,
                                                    const ProgressFn& progress,

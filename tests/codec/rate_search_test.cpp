@@ -12,13 +12,16 @@ namespace {
 
 using Curve = std::function<double(int64_t)>;
 
-RateEvaluator Evaluating(const Curve& psnr, int* calls) {
-  return [psnr, calls](int64_t code) -> StatusOr<RatePoint> {
+// Points on the given quality and size curves (by default, the size doubling
+// every 16 codes), counting the calls.
+RateEvaluator Evaluating(const Curve& psnr, int* calls,
+                         const Curve& bpv = [](int64_t c) { return std::exp2(static_cast<double>(c) / 16.0); }) {
+  return [psnr, bpv, calls](int64_t code) -> StatusOr<RatePoint> {
     ++*calls;
     RatePoint p;
     p.lambda_code = code;
     p.psnr_db = psnr(code);
-    p.bpv = std::exp2(static_cast<double>(code) / 16.0);
+    p.bpv = bpv(code);
     return p;
   };
 }
@@ -82,13 +85,7 @@ TEST(RateSearch, InfiniteQualityIsBisectedNotInterpolated) {
 }
 
 RateEvaluator SizeEvaluating(const Curve& bpv, int* calls) {
-  return [bpv, calls](int64_t code) -> StatusOr<RatePoint> {
-    ++*calls;
-    RatePoint p;
-    p.lambda_code = code;
-    p.bpv = bpv(code);
-    return p;
-  };
+  return Evaluating([](int64_t) { return 0.0; }, calls, bpv);
 }
 
 // bpv doubling every `codes` codes, 1 bpv at code 0.
