@@ -53,15 +53,4 @@ StatusOr<std::vector<Vec3>> EncodeLevelsClosedLoop(const ClosedLoopSteps& steps,
   return decoded;
 }
 
-StatusOr<std::vector<Vec3>> EncodeLevelsClosedLoop(const SemiRegularHierarchy& hierarchy,
-                                                   bitstream::TransformId transform,
-                                                   const AnalyzedLevels& truth,
-                                                   std::vector<Vec3> decoded,
-                                                   const LevelCoderFn& coder,
-                                                   const ProgressFn& progress,
-                                                   std::vector<std::vector<uint8_t>>* chunks) {
-  return EncodeLevelsClosedLoop(ClosedLoopSteps(hierarchy, transform), truth, std::move(decoded), coder, progress,
-                                chunks);
-}
-
 }  // namespace eqmesh

@@ -60,13 +60,5 @@ StatusOr<std::vector<Vec3>> EncodeLevelsClosedLoop(const ClosedLoopSteps& steps,
                                                    std::vector<Vec3> decoded_base, const LevelCoderFn& coder,
                                                    const ProgressFn& progress,
                                                    std::vector<std::vector<uint8_t>>* chunks);
-// The same for a single pass (the steps built for it).
-StatusOr<std::vector<Vec3>> EncodeLevelsClosedLoop(const SemiRegularHierarchy& hierarchy,
-                                                   bitstream::TransformId transform,
-                                                   const AnalyzedLevels& truth,
-                                                   std::vector<Vec3> decoded_base,
-                                                   const LevelCoderFn& coder,
-                                                   const ProgressFn& progress,
-                                                   std::vector<std::vector<uint8_t>>* chunks);
 
 }  // namespace eqmesh

@@ -92,16 +92,11 @@ StatusOr<std::vector<uint8_t>> EncodeLevelCoefficients(const LevelCodingParams& 
   switch (params.coder) {
     case bitstream::CoderId::kUniform:
       return EncodeUniform(params, local, reconstructed);
-    case bitstream::CoderId::kEq: {
-      if (eq_layout != nullptr) {
-        if (eq_layout->level != j || eq_layout->size() != local.size()) {
-          return InternalError("level " + std::to_string(j) + " coded with another level's layout");
-        }
-        return EncodeEq(params, hierarchy, j, *eq_layout, local, reconstructed);
+    case bitstream::CoderId::kEq:
+      if (eq_layout == nullptr || eq_layout->level != j || eq_layout->size() != local.size()) {
+        return InternalError("level " + std::to_string(j) + " coded without its EQ layout");
       }
-      EQMESH_ASSIGN_OR_RETURN(const EqLevelLayout layout, BuildEqLevelLayout(hierarchy, j));
-      return EncodeEq(params, hierarchy, j, layout, local, reconstructed);
-    }
+      return EncodeEq(params, hierarchy, j, *eq_layout, local, reconstructed);
     case bitstream::CoderId::kZerotree:
       break;
   }

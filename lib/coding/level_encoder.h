@@ -11,13 +11,13 @@ namespace eqmesh {
 
 // Codes the local coefficients of refinement j -> j+1 and returns the chunk;
 // *reconstructed receives exactly what DecodeLevelCoefficients will return for it
-// (the closed loop continues from those values). `eq_layout`, when given, is
-// BuildEqLevelLayout(hierarchy, j), built once by a caller that codes the level
-// many times.
+// (the closed loop continues from those values). The EQ coder needs `eq_layout`,
+// BuildEqLevelLayout(hierarchy, j), built once by the caller, which codes the
+// level in every pass; the other coders take nullptr.
 StatusOr<std::vector<uint8_t>> EncodeLevelCoefficients(const LevelCodingParams& params,
                                                        const SemiRegularHierarchy& hierarchy,
                                                        int j, const std::vector<Vec3>& local,
                                                        std::vector<Vec3>* reconstructed,
-                                                       const EqLevelLayout* eq_layout = nullptr);
+                                                       const EqLevelLayout* eq_layout);
 
 }  // namespace eqmesh

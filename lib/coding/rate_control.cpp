@@ -40,6 +40,7 @@ bool InRange(int64_t code) { return code >= -bitstream::kMaxLogCode && code <= b
 // stream near its level count's ceiling): steps of one octave of lambda then,
 // doubling each time, so a flat stretch is crossed, or the code range's end
 // reached, in a few evaluations.
+// No `value` means no model: octave steps, doubling, all the way.
 struct StepModel {
   double (*value)(const RatePoint&);
   double per_code;
@@ -48,24 +49,23 @@ struct StepModel {
 };
 
 double LogSize(const RatePoint& p) { return p.bpv > 0 ? std::log2(p.bpv) : -std::numeric_limits<double>::infinity(); }
-double Quality(const RatePoint& p) { return p.psnr_db; }
 
 // The rate model: 4x lambda (32 codes) roughly doubles an EQ stream; horse's
 // 4- to 6-level streams measure 35-43 codes per doubling between 0.4 and 7 bpv.
 // Its first step may span eight octaves of lambda, more than lies between 1/64
 // (the default lambda) and any rate from 0.1 to 10 bpv on the bench meshes.
 constexpr StepModel kRateModel{LogSize, 1.0 / 36.0, 1.0 / 160.0, 1.0 / 8.0, 128};
-// The quality search steps by octaves of lambda, doubling (no model): a model
-// of 0.12 dB per code (horse's 3- to 6-level streams below their ceilings) took
-// as many measured evaluations on horse's --psnr 70 encode, more near a
-// ceiling, where PSNR barely moves with the code.
-constexpr StepModel kQualityModel{Quality, 0.0, 0.0, 0.0, 0};
+// The quality search steps by octaves of lambda, doubling, with no model: near
+// a level count's ceiling PSNR barely moves with the code, and a step sized by
+// a model lands short again and again, each a measured pass
+// (bench/log/2026-12-06-encoder-passes.md).
+constexpr StepModel kOctaveSteps{nullptr, 0.0, 0.0, 0.0, 0};
 
 // Value change per code from the secant through two points where it is
 // trusted; the model's where it is too steep or there is no previous point;
 // zero where it is too flat or there is no model.
 double SlopePerCode(const StepModel& model, const RatePoint* previous, const RatePoint& p) {
-  if (model.per_code == 0.0) return 0.0;
+  if (model.value == nullptr) return 0.0;
   if (previous == nullptr) return model.per_code;
   const double a = model.value(*previous), b = model.value(p);
   if (!std::isfinite(a) || !std::isfinite(b)) return model.per_code;
@@ -184,7 +184,7 @@ StatusOr<RatePoint> SearchForQuality(const RateEvaluator& eval, double target_ps
   RatePoint lo, hi;
   const auto never = [](const RatePoint&) { return false; };
   EQMESH_ASSIGN_OR_RETURN(const BracketEnd end,
-                          Bracket(probe, kQualityModel, target_psnr, meets, never, start_code, &lo, &hi));
+                          Bracket(probe, kOctaveSteps, target_psnr, meets, never, start_code, &lo, &hi));
   if (end != BracketEnd::kBracketed) return hi;
   auto open = [&] { return hi.lambda_code - lo.lambda_code > kQualityResolution && !probe.exhausted(); };
   auto narrow = [&](int64_t code) -> Status {

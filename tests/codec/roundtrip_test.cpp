@@ -27,8 +27,8 @@ TEST_P(ClosedLoop, WithoutQuantizationReproducesTheMesh) {
     return StatusOr<std::vector<uint8_t>>(std::vector<uint8_t>{});
   };
   std::vector<std::vector<uint8_t>> chunks;
-  auto finest = EncodeLevelsClosedLoop(mesh.hierarchy, GetParam(), truth, truth.values[0], identity,
-                                       {}, &chunks);
+  auto finest = EncodeLevelsClosedLoop(ClosedLoopSteps(mesh.hierarchy, GetParam()), truth, truth.values[0],
+                                       identity, {}, &chunks);
   ASSERT_TRUE(finest.ok()) << finest.status().ToString();
   const double diagonal = testing::Diagonal(mesh.positions);
   EXPECT_LE(testing::MaxVertexError(*finest, mesh.positions), 1e-9 * diagonal);
@@ -55,8 +55,8 @@ TEST_P(ClosedLoop, StepsSharedAcrossPassesCodeAsFreshStepsDo) {
     return StatusOr<std::vector<uint8_t>>(std::move(chunk));
   };
   std::vector<std::vector<uint8_t>> fresh_chunks;
-  auto fresh = EncodeLevelsClosedLoop(mesh.hierarchy, GetParam(), truth, truth.values[0], quantizing, {},
-                                      &fresh_chunks);
+  auto fresh = EncodeLevelsClosedLoop(ClosedLoopSteps(mesh.hierarchy, GetParam()), truth, truth.values[0],
+                                      quantizing, {}, &fresh_chunks);
   ASSERT_TRUE(fresh.ok()) << fresh.status().ToString();
   const ClosedLoopSteps steps(mesh.hierarchy, GetParam());
   for (int pass = 0; pass < 3; ++pass) {
