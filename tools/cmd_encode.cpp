@@ -99,6 +99,7 @@ nlohmann::json ToJson(const EncodeArgs& a, const RemeshReport& remesh, const Enc
   j["input"] = a.in_path;
   j["output"] = a.out_path;
   j["input_vertices"] = remesh.input_vertices;
+  j["welded_vertices"] = remesh.welded_vertices;
   j["representation"] = choice.as_is ? "as_is" : "normal_mesh";
   if (choice.tried_as_is) {
     j["representations"] = {{"normal_mesh", {{"bytes", choice.remeshed_bytes}, {"psnr_db", choice.remeshed_psnr_db}}},

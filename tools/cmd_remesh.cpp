@@ -76,14 +76,17 @@ int RunRemesh(int argc, char** argv) {
     if (!r.ok()) return eqmesh::cli::Fail(kName, in_path + ": " + r.status().message());
     repaired = std::move(r).value();
   }
-  const eqmesh::Mesh& surface = repaired ? *repaired : *mesh;
+  const eqmesh::Mesh& remesh_input = repaired ? *repaired : *mesh;
+  // Unrepaired input Remesh() welds itself (WeldSeams); the fold count judges
+  // each face against that welded surface, whose components are its parts.
+  const eqmesh::Mesh surface = repaired ? *repaired : eqmesh::WeldSeams(*mesh);
   eqmesh::RemeshOptions options;
   options.levels = levels;
   options.base_vertices = base_vertices;
   options.min_psnr = min_psnr;
   options.progress = eqmesh::cli::TerminalProgress(json);
   eqmesh::RemeshReport report;
-  auto remeshed = eqmesh::Remesh(surface, options, &report);
+  auto remeshed = eqmesh::Remesh(remesh_input, options, &report);
   eqmesh::cli::ClearTerminalProgress(options.progress);
   if (!remeshed.ok()) return eqmesh::cli::Fail(kName, in_path + ": " + remeshed.status().message());
   if (!repair_report.Unchanged()) report.notes.insert(report.notes.begin(), "repair: " + repair_report.Summary());
@@ -110,6 +113,7 @@ int RunRemesh(int argc, char** argv) {
   j["output"] = out_path;
   j["input_vertices"] = report.input_vertices;
   j["input_faces"] = mesh->faces.size();
+  j["welded_vertices"] = report.welded_vertices;
   j["base_vertices"] = report.base_vertices;
   j["levels"] = report.levels;
   j["output_vertices"] = report.output_vertices;

@@ -116,10 +116,41 @@ bool RevertNonOrientableWelds(const MeshTopology& welded, const WeldGroups& g, s
   return found;
 }
 
+// What a weld may leave behind. Before the rest of the repair, pinches and
+// inconsistent edges are left to steps 4 and 5; a weld that is all there is
+// (WeldSeams) must leave neither where the input had none.
+enum class WeldMode { kBeforeRepair, kAlone };
+
+// Groups whose weld left a pinched vertex (fans joined, but not into one) or an
+// edge the weld joined whose two faces run it the same way; returns whether any
+// was found.
+bool RevertUnrepairedWelds(const Mesh& input, const MeshTopology& welded, const WeldGroups& g,
+                           std::vector<uint8_t>* reverted) {
+  bool found = false;
+  std::vector<uint32_t> labels;
+  for (uint32_t v = 0; v < welded.num_vertices(); ++v) {
+    if (IsActiveRep(g, *reverted, v) && welded.VertexFans(v, &labels) > 1) {
+      (*reverted)[v] = 1;
+      found = true;
+    }
+  }
+  for (uint32_t e = 0; e < welded.num_edges(); ++e) {
+    if (welded.IsNonManifoldEdge(e) || !welded.IsInconsistentEdge(e) || !WeldJoinedEdge(welded, e, input)) continue;
+    for (uint32_t v : welded.EdgeVertices(e)) {
+      if (IsActiveRep(g, *reverted, v)) {
+        (*reverted)[v] = 1;
+        found = true;
+      }
+    }
+  }
+  return found;
+}
+
 // Marks the groups at fault in `welded`; returns whether any was found.
-bool RevertFaultyWelds(const Mesh& input, const MeshTopology& welded, const WeldGroups& g,
+bool RevertFaultyWelds(const Mesh& input, const MeshTopology& welded, const WeldGroups& g, WeldMode mode,
                        std::vector<uint8_t>* reverted) {
   bool found = RevertNonOrientableWelds(welded, g, reverted);
+  if (mode == WeldMode::kAlone) found = RevertUnrepairedWelds(input, welded, g, reverted) || found;
   std::vector<uint32_t> labels;
   for (uint32_t v = 0; v < welded.num_vertices(); ++v) {
     // A weld that joins no fans only pinches sheets together at a point.
@@ -140,7 +171,7 @@ bool RevertFaultyWelds(const Mesh& input, const MeshTopology& welded, const Weld
   return found;
 }
 
-void WeldDuplicatePositions(Mesh* mesh, RepairReport* report) {
+void WeldDuplicatePositions(Mesh* mesh, WeldMode mode, RepairReport* report) {
   WeldGroups g = FindWeldGroups(*mesh);
   const size_t n = mesh->positions.size();
   std::vector<uint8_t> reverted(n, 0);
@@ -167,7 +198,7 @@ void WeldDuplicatePositions(Mesh* mesh, RepairReport* report) {
   bool settled = false;
   for (int round = 0; round < kMaxRounds && !settled; ++round) {
     welded.faces = WeldedFaces(*mesh, g, reverted);
-    settled = !RevertFaultyWelds(*mesh, MeshTopology(welded), g, &reverted);
+    settled = !RevertFaultyWelds(*mesh, MeshTopology(welded), g, mode, &reverted);
   }
   if (!settled) std::fill(reverted.begin(), reverted.end(), uint8_t{1});
   for (uint32_t v = 0; v < n; ++v) {
@@ -428,7 +459,7 @@ StatusOr<Mesh> RepairForRemeshing(const Mesh& input, RepairReport* report, const
   *r = RepairReport{};
   EQMESH_RETURN_IF_ERROR(ValidateInput(input));
   Mesh mesh = input;
-  WeldDuplicatePositions(&mesh, r);
+  WeldDuplicatePositions(&mesh, WeldMode::kBeforeRepair, r);
   DropDegenerateAndDuplicateFaces(&mesh, options.degenerate_area_tolerance, r);
   if (mesh.faces.empty()) return InvalidMesh("no non-degenerate faces left to repair");
   SplitNonManifoldEdges(&mesh, r);
@@ -437,6 +468,15 @@ StatusOr<Mesh> RepairForRemeshing(const Mesh& input, RepairReport* report, const
   r->unreferenced_vertices_removed += DropUnreferencedVertices(&mesh);
   EQMESH_RETURN_IF_ERROR(CheckRepaired(mesh, options.degenerate_area_tolerance));
   return mesh;
+}
+
+Mesh WeldSeams(const Mesh& mesh, size_t* vertices_welded) {
+  RepairReport report;
+  Mesh out = mesh;
+  // Invalid input is left to the caller's own checks, which name the fault.
+  if (ValidateInput(mesh).ok()) WeldDuplicatePositions(&out, WeldMode::kAlone, &report);
+  if (vertices_welded) *vertices_welded = report.vertices_welded;
+  return out;
 }
 
 }  // namespace eqmesh

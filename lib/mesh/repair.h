@@ -1,6 +1,7 @@
 // Topological repair before remeshing (the remesher's --repair flag).
 //
-// RepairForRemeshing runs these steps, in this order, each deterministic:
+// RepairForRemeshing runs these steps, in this order, each deterministic
+// (WeldSeams, below, runs step 1 alone):
 //  1. weld   Vertices with bitwise-identical positions (-0 == +0) are merged
 //            into the lowest-numbered one, but only where the merge (a) keeps
 //            every edge at <= 2 faces and (b) actually joins surface, i.e. the
@@ -70,5 +71,16 @@ struct RepairReport {
 // repair can fix. `report` may be null.
 StatusOr<Mesh> RepairForRemeshing(const Mesh& mesh, RepairReport* report,
                                   const RepairOptions& options = {});
+
+// Step 1 alone, for input that is not repaired otherwise: welds vertices at
+// bitwise-identical positions wherever that joins surface and leaves no
+// non-manifold edge, pinched vertex or inconsistently oriented edge the input
+// did not have. Seams that exporters split (UV, normal or material seams, and
+// triangle soups, whose every face has its own corners) close into the surface
+// they belong to; the geometry is the same, so is any distance to it. Faces keep
+// their order and vertices their numbers (merged ones become unreferenced).
+// Input with an out-of-range index or a non-finite coordinate comes back as it
+// is, for the caller's checks to name. `vertices_welded` may be null.
+Mesh WeldSeams(const Mesh& mesh, size_t* vertices_welded = nullptr);
 
 }  // namespace eqmesh

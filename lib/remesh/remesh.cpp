@@ -124,11 +124,21 @@ Mesh ExtractFaces(const Mesh& m, const std::vector<uint8_t>& take, std::vector<u
 }
 
 StatusOr<Prepared> Prepare(const Mesh& input, const RemeshOptions& options, RemeshReport* report) {
-  Mesh mesh = input;
+  Mesh mesh;
   if (options.repair) {
     RepairReport repair;
     EQMESH_ASSIGN_OR_RETURN(mesh, RepairForRemeshing(input, &repair));
     if (!repair.Unchanged()) report->notes.push_back("repair: " + repair.Summary());
+    report->welded_vertices = repair.vertices_welded;
+  } else {
+    // The surface, not the file's vertex numbering, is what gets remeshed: split
+    // seams would cut it into patches remeshed apart (a triangle soup into
+    // components too small to remesh at all).
+    mesh = WeldSeams(input, &report->welded_vertices);
+    if (report->welded_vertices > 0) {
+      report->notes.push_back("welded " + std::to_string(report->welded_vertices) +
+                              " vertices sharing a position with another (split seams)");
+    }
   }
   if (mesh.faces.empty()) return InvalidMesh("mesh has no faces");
   {

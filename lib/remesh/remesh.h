@@ -46,7 +46,10 @@ struct RemeshOptions {
 };
 
 struct RemeshReport {
-  size_t input_vertices = 0;   // referenced input vertices
+  size_t input_vertices = 0;   // referenced vertices of the surface remeshed (after welding)
+  // Input vertices merged into another at the same position (WeldSeams, or the
+  // repair's weld with RemeshOptions::repair).
+  size_t welded_vertices = 0;
   size_t base_vertices = 0;
   size_t output_vertices = 0;  // finest level (plus kept_exactly vertices)
   int levels = 0;

@@ -112,5 +112,30 @@ TEST(RemeshInput, ExtremeScalesRemeshExactlyAsAtUnitScale) {
   EXPECT_GE(huge_report.normal_fraction, 0.9);
 }
 
+TEST(RemeshInput, TriangleSoupRemeshesAsItsSurface) {
+  // Flat-shaded exports give every face corners of its own: welded, the soup
+  // is the torus, numbered in the same order, and remeshes exactly as it does.
+  const Mesh torus = testing::MakeTorus(16, 8);
+  Mesh soup;
+  for (const Face& f : torus.faces) {
+    const uint32_t first = static_cast<uint32_t>(soup.positions.size());
+    for (uint32_t v : f) soup.positions.push_back(torus.positions[v]);
+    soup.faces.push_back({first, first + 1, first + 2});
+  }
+  RemeshOptions options;
+  options.levels = 2;
+  RemeshReport torus_report, soup_report;
+  auto expected = Remesh(torus, options, &torus_report);
+  auto remeshed = Remesh(soup, options, &soup_report);
+  ASSERT_TRUE(expected.ok()) << expected.status().ToString();
+  ASSERT_TRUE(remeshed.ok()) << remeshed.status().ToString();
+  EXPECT_EQ(soup_report.welded_vertices, soup.num_vertices() - torus.num_vertices());
+  EXPECT_EQ(torus_report.welded_vertices, 0u);
+  EXPECT_EQ(soup_report.components_remeshed, 1u);
+  EXPECT_EQ(remeshed->hierarchy.BaseFaces(), expected->hierarchy.BaseFaces());
+  EXPECT_EQ(remeshed->positions, expected->positions);
+  EXPECT_EQ(remeshed->kinds, expected->kinds);
+}
+
 }  // namespace
 }  // namespace eqmesh
