@@ -386,10 +386,13 @@ int RunEncode(int argc, char** argv) {
     std::printf("%s\n",
                 ToJson(a, remesh_report, report, search, choice, remesh_seconds, encode_seconds).dump(2).c_str());
   } else {
+    const std::string shape = !choice.as_is              ? std::to_string(report.level_bytes.size()) + " levels"
+                              : choice.remeshed_bytes > 0 ? "the input coded as is (" +
+                                                                std::to_string(choice.remeshed_bytes) +
+                                                                " bytes as a normal mesh)"
+                                                          : "the input coded as is (too small to remesh)";
     std::printf("%s: %zu bytes, %.3f bits per input vertex (%zu vertices), %s", a.out_path.c_str(),
-                report.total_bytes, report.bpv, options.input_vertices,
-                choice.as_is ? "the input coded as is (smaller than its normal mesh)"
-                             : (std::to_string(report.level_bytes.size()) + " levels").c_str());
+                report.total_bytes, report.bpv, options.input_vertices, shape.c_str());
     if (report.psnr_measured) std::printf(", PSNR %.2f dB", report.psnr_db);
     std::printf("\n");
   }

@@ -8,7 +8,8 @@
 // form needs more vertices than the artist's mesh to reach the same error, and no
 // coder of its coefficients can then beat a good coder of the input itself. The
 // encoder measures both where the second can win and keeps the better: for a PSNR
-// target the smaller stream that meets it, for a rate target the higher PSNR.
+// target the smaller stream that meets it, for a rate target the higher PSNR,
+// without a target the smaller at the remeshed stream's quality.
 // Departure from the seed: the seed codes every input as a normal mesh.
 #pragma once
 
@@ -51,16 +52,18 @@ struct RepresentationOptions {
   // mesh of a given shape (levels, base size) or needs one (an atlas).
   bool allow_as_is = false;
   bool repair = false;  // RemeshOptions::repair for the as-is mesh
-  // Without a target: compare when the normal mesh measures below this PSNR (0:
-  // never); options.measure_psnr must be set.
+  // Without a target, the floor the comparison keeps (0: no comparison); both
+  // streams are measured, so options.measure_psnr must be set.
   double floor_db = 0;
 };
 
 // EncodeChoosingLevels(remeshed) and, where allowed, options.original set, and
 // either a bpv or PSNR target (the remeshed stream short of it, or its bytes
 // leaving room for the connectivity and kAsIsMinPositionBits per vertex) or no
-// target with the remeshed stream below the floor, the input coded as is; returns
-// the better (without a target: the higher PSNR).
+// target with both measured (RepresentationOptions::floor_db), the input coded as
+// is; returns the better. Without a target the remeshed stream is measured: below
+// the floor the higher PSNR wins; above it the input is coded as is at that
+// stream's PSNR and wins where it is no larger.
 StatusOr<std::vector<uint8_t>> EncodeChoosingRepresentation(const SemiRegularMesh& remeshed,
                                                             const EncodeOptions& options,
                                                             const RepresentationOptions& representation,

@@ -163,5 +163,102 @@ TEST(RepresentationChoice, AsIsIsOnlyTriedWhereItsConnectivityAndPositionsFit) {
   EXPECT_TRUE(AsIsFitsIn(*as_is, vertices * 12 / 8));
 }
 
+TEST(RepresentationChoice, WithoutATargetAsIsReplacesAStreamItBeatsOnBothCounts) {
+  // A .glb primitive's default: a bare lambda, measured within the input's own
+  // triangle count, above a floor. The gem's one-level remesh cut to the gem's 80
+  // triangles cannot follow its facets; the gem as is can, in fewer bytes.
+  const Mesh gem = Gem();
+  const SemiRegularMesh normal_mesh = OneLevelRemesh(gem);
+  ASSERT_FALSE(normal_mesh.positions.empty());
+  EncodeOptions options;
+  options.original = &gem;
+  options.input_vertices = gem.positions.size();
+  options.measure_psnr = true;
+  options.psnr_samples = 20'000;
+  options.max_triangles = gem.faces.size();
+  RepresentationOptions allowed;
+  allowed.allow_as_is = true;
+  allowed.floor_db = 20.0;
+  RepresentationReport choice;
+  EncodeReport report;
+  auto stream = EncodeChoosingRepresentation(normal_mesh, options, allowed, &report, nullptr, &choice);
+  ASSERT_TRUE(stream.ok()) << stream.status().ToString();
+  ASSERT_TRUE(choice.tried_as_is);
+  ASSERT_GE(choice.remeshed_psnr_db, allowed.floor_db);
+  EXPECT_TRUE(choice.as_is);
+  EXPECT_LE(choice.as_is_bytes, choice.remeshed_bytes);
+  EXPECT_GE(choice.as_is_psnr_db, choice.remeshed_psnr_db);
+  EXPECT_EQ(stream->size(), choice.as_is_bytes);
+  // Without a floor, and without the caller asking for a measurement (an .eqm
+  // stream at a bare lambda), the two are measured for the comparison all the same.
+  allowed.floor_db = 0;
+  options.measure_psnr = false;
+  RepresentationReport unasked;
+  auto same = EncodeChoosingRepresentation(normal_mesh, options, allowed, nullptr, nullptr, &unasked);
+  ASSERT_TRUE(same.ok()) << same.status().ToString();
+  EXPECT_TRUE(unasked.as_is);
+  EXPECT_EQ(*same, *stream);
+  EXPECT_EQ(unasked.remeshed_psnr_db, choice.remeshed_psnr_db);
+}
+
+TEST(RepresentationChoice, MeshTooSmallToRemeshTravelsAsIs) {
+  // Every component below the remesher's minimum: there is no normal mesh to
+  // code, with or without a target, and the input itself is what travels.
+  Mesh tetrahedron;
+  tetrahedron.positions = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
+  tetrahedron.faces = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
+  RemeshReport remesh_report;
+  auto remeshed = Remesh(tetrahedron, RemeshOptions{}, &remesh_report);
+  ASSERT_TRUE(remeshed.ok()) << remeshed.status().ToString();
+  ASSERT_EQ(remeshed->hierarchy.NumVertices(0), 0u);
+  RepresentationOptions allowed;
+  allowed.allow_as_is = true;
+  for (const double target : {0.0, 70.0}) {
+    EncodeOptions options;
+    options.original = &tetrahedron;
+    options.input_vertices = tetrahedron.positions.size();
+    options.target_psnr = target;
+    options.psnr_samples = 20'000;
+    RepresentationReport choice;
+    auto stream = EncodeChoosingRepresentation(*remeshed, options, allowed, nullptr, nullptr, &choice);
+    ASSERT_TRUE(stream.ok()) << target << ": " << stream.status().ToString();
+    EXPECT_TRUE(choice.as_is);
+    EXPECT_EQ(choice.remeshed_bytes, 0u);
+    auto decoded = Decode(stream->data(), stream->size());
+    ASSERT_TRUE(decoded.ok()) << decoded.status().ToString();
+    EXPECT_EQ(decoded->faces.size(), tetrahedron.faces.size());
+  }
+  // Not allowed: the encoder says why it cannot code it.
+  EncodeOptions options;
+  options.original = &tetrahedron;
+  auto refused = EncodeChoosingRepresentation(*remeshed, options, RepresentationOptions{}, nullptr, nullptr, nullptr);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.status().message().find("nothing was remeshed"), std::string::npos);
+}
+
+TEST(RepresentationChoice, WithoutATargetARemeshSmallerAtItsQualityStays) {
+  // A smooth sphere refined three times codes far below its 642 vertices as is,
+  // so as is is either not tried (it cannot fit) or larger at the same quality.
+  const SemiRegularMesh refined = testing::MakeBumpySphere(3);
+  const Mesh surface = ExtractLevel(refined, 3);
+  EncodeOptions options;
+  options.original = &surface;
+  options.input_vertices = surface.positions.size();
+  options.measure_psnr = true;
+  options.psnr_samples = 20'000;
+  RepresentationOptions allowed;
+  allowed.allow_as_is = true;
+  allowed.floor_db = 20.0;
+  RepresentationReport choice;
+  auto stream = EncodeChoosingRepresentation(refined, options, allowed, nullptr, nullptr, &choice);
+  ASSERT_TRUE(stream.ok()) << stream.status().ToString();
+  EXPECT_FALSE(choice.as_is);
+  EXPECT_EQ(stream->size(), choice.remeshed_bytes);
+  if (choice.tried_as_is && choice.as_is_bytes > 0) {
+    EXPECT_GT(choice.as_is_bytes, choice.remeshed_bytes);
+    EXPECT_GE(choice.as_is_psnr_db, choice.remeshed_psnr_db);
+  }
+}
+
 }  // namespace
 }  // namespace eqmesh
