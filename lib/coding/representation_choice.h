@@ -52,18 +52,21 @@ struct RepresentationOptions {
   // mesh of a given shape (levels, base size) or needs one (an atlas).
   bool allow_as_is = false;
   bool repair = false;  // RemeshOptions::repair for the as-is mesh
-  // Without a target, the floor the comparison keeps (0: no comparison); both
-  // streams are measured, so options.measure_psnr must be set.
+  // Without a target: a remeshed stream measuring below this PSNR (a .glb's
+  // --min-psnr; 0: none) gives way to an as-is stream of higher PSNR at the same
+  // lambda, whatever its size.
   double floor_db = 0;
 };
 
-// EncodeChoosingLevels(remeshed) and, where allowed, options.original set, and
-// either a bpv or PSNR target (the remeshed stream short of it, or its bytes
-// leaving room for the connectivity and kAsIsMinPositionBits per vertex) or no
-// target with both measured (RepresentationOptions::floor_db), the input coded as
-// is; returns the better. Without a target the remeshed stream is measured: below
-// the floor the higher PSNR wins; above it the input is coded as is at that
-// stream's PSNR and wins where it is no larger.
+// EncodeChoosingLevels(remeshed) and, where allowed and options.original is set,
+// the input coded as is, where the remeshed stream's bytes leave room for the
+// connectivity and kAsIsMinPositionBits per vertex, or it falls short of its
+// target, or nothing was remeshed (then the input as is is the only stream);
+// returns the better. With a PSNR target the smaller meeting it, with a bpv
+// target the higher PSNR. Without a target the remeshed stream is measured (if
+// the encode did not): below floor_db the higher PSNR at the lambda; above it
+// the as-is stream at the lambda where neither larger nor worse, else the as-is
+// stream searched for the remeshed stream's PSNR where no larger.
 StatusOr<std::vector<uint8_t>> EncodeChoosingRepresentation(const SemiRegularMesh& remeshed,
                                                             const EncodeOptions& options,
                                                             const RepresentationOptions& representation,
