@@ -87,6 +87,16 @@ Mesh MakeDisc(int rings, double radius) {
   return mesh;
 }
 
+Mesh MakeTriangleSoup(const Mesh& mesh) {
+  Mesh soup;
+  for (const Face& f : mesh.faces) {
+    const uint32_t first = static_cast<uint32_t>(soup.positions.size());
+    for (uint32_t v : f) soup.positions.push_back(mesh.positions[v]);
+    soup.faces.push_back({first, first + 1, first + 2});
+  }
+  return soup;
+}
+
 Mesh WithComponent(Mesh a, const Mesh& b, const Vec3& shift) {
   const uint32_t offset = static_cast<uint32_t>(a.positions.size());
   for (const Vec3& p : b.positions) a.positions.push_back(p + shift);

@@ -20,6 +20,9 @@ Mesh MakeTorus(int n, int m, double major_radius = 1.0, double minor_radius = 0.
 // Flat disc in the z = 0 plane with `rings` rings: a mesh with one boundary loop.
 Mesh MakeDisc(int rings, double radius = 1.0);
 
+// Every face of `mesh` with three corners of its own, as flat-shaded exports
+// write them (each face its own component).
+Mesh MakeTriangleSoup(const Mesh& mesh);
 // `a` with `b` moved by `shift` appended as a second component.
 Mesh WithComponent(Mesh a, const Mesh& b, const Vec3& shift);
 // The largest side of the mesh's bounding box.

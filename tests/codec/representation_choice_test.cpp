@@ -43,14 +43,19 @@ SemiRegularMesh OneLevelRemesh(const Mesh& gem) {
   return remeshed.ok() ? *std::move(remeshed) : SemiRegularMesh();
 }
 
-// A PSNR target on `gem`, measured at 20k samples: the choice, not the meter's
-// precision, is under test.
-EncodeOptions PsnrTarget(const Mesh& gem, double psnr) {
+// Options that measure against `original` at 20k samples: the choice, not the
+// meter's precision, is under test.
+EncodeOptions MeasuredAgainst(const Mesh& original) {
   EncodeOptions options;
-  options.original = &gem;
-  options.input_vertices = gem.positions.size();
-  options.target_psnr = psnr;
+  options.original = &original;
+  options.input_vertices = original.positions.size();
   options.psnr_samples = 20'000;
+  return options;
+}
+
+EncodeOptions PsnrTarget(const Mesh& gem, double psnr) {
+  EncodeOptions options = MeasuredAgainst(gem);
+  options.target_psnr = psnr;
   return options;
 }
 
@@ -170,11 +175,8 @@ TEST(RepresentationChoice, WithoutATargetAsIsReplacesAStreamItBeatsOnBothCounts)
   const Mesh gem = Gem();
   const SemiRegularMesh normal_mesh = OneLevelRemesh(gem);
   ASSERT_FALSE(normal_mesh.positions.empty());
-  EncodeOptions options;
-  options.original = &gem;
-  options.input_vertices = gem.positions.size();
+  EncodeOptions options = MeasuredAgainst(gem);
   options.measure_psnr = true;
-  options.psnr_samples = 20'000;
   options.max_triangles = gem.faces.size();
   RepresentationOptions allowed;
   allowed.allow_as_is = true;
@@ -214,11 +216,8 @@ TEST(RepresentationChoice, MeshTooSmallToRemeshTravelsAsIs) {
   RepresentationOptions allowed;
   allowed.allow_as_is = true;
   for (const double target : {0.0, 70.0}) {
-    EncodeOptions options;
-    options.original = &tetrahedron;
-    options.input_vertices = tetrahedron.positions.size();
+    EncodeOptions options = MeasuredAgainst(tetrahedron);
     options.target_psnr = target;
-    options.psnr_samples = 20'000;
     RepresentationReport choice;
     auto stream = EncodeChoosingRepresentation(*remeshed, options, allowed, nullptr, nullptr, &choice);
     ASSERT_TRUE(stream.ok()) << target << ": " << stream.status().ToString();
@@ -241,11 +240,8 @@ TEST(RepresentationChoice, WithoutATargetARemeshSmallerAtItsQualityStays) {
   // so as is is either not tried (it cannot fit) or larger at the same quality.
   const SemiRegularMesh refined = testing::MakeBumpySphere(3);
   const Mesh surface = ExtractLevel(refined, 3);
-  EncodeOptions options;
-  options.original = &surface;
-  options.input_vertices = surface.positions.size();
+  EncodeOptions options = MeasuredAgainst(surface);
   options.measure_psnr = true;
-  options.psnr_samples = 20'000;
   RepresentationOptions allowed;
   allowed.allow_as_is = true;
   allowed.floor_db = 20.0;

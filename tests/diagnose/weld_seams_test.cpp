@@ -12,17 +12,6 @@
 namespace eqmesh {
 namespace {
 
-// Every face with corners of its own, as flat-shaded exports write them.
-Mesh TriangleSoup(const Mesh& mesh) {
-  Mesh soup;
-  for (const Face& f : mesh.faces) {
-    const uint32_t first = static_cast<uint32_t>(soup.positions.size());
-    for (uint32_t v : f) soup.positions.push_back(mesh.positions[v]);
-    soup.faces.push_back({first, first + 1, first + 2});
-  }
-  return soup;
-}
-
 // The faces' corner positions, face by face: the geometry a weld must keep.
 std::vector<Vec3> CornerPositions(const Mesh& mesh) {
   std::vector<Vec3> corners;
@@ -35,7 +24,7 @@ bool SameMesh(const Mesh& a, const Mesh& b) { return a.positions == b.positions 
 
 TEST(WeldSeams, TriangleSoupClosesIntoTheSurface) {
   const Mesh torus = testing::MakeTorus(12, 8);
-  const Mesh soup = TriangleSoup(torus);
+  const Mesh soup = testing::MakeTriangleSoup(torus);
   ASSERT_EQ(Diagnose(soup).components, torus.num_faces());
   size_t welded = 0;
   const Mesh w = WeldSeams(soup, &welded);
@@ -95,7 +84,7 @@ TEST(WeldSeams, OppositelyOrientedSheetsStayApart) {
 }
 
 TEST(WeldSeams, InvalidInputComesBackUnchanged) {
-  Mesh m = TriangleSoup(testing::MakeIcosphere(1));
+  Mesh m = testing::MakeTriangleSoup(testing::MakeIcosphere(1));
   m.positions[7].x() = std::numeric_limits<double>::quiet_NaN();
   size_t welded = 1;
   const Mesh w = WeldSeams(m, &welded);

@@ -116,12 +116,7 @@ TEST(RemeshInput, TriangleSoupRemeshesAsItsSurface) {
   // Flat-shaded exports give every face corners of its own: welded, the soup
   // is the torus, numbered in the same order, and remeshes exactly as it does.
   const Mesh torus = testing::MakeTorus(16, 8);
-  Mesh soup;
-  for (const Face& f : torus.faces) {
-    const uint32_t first = static_cast<uint32_t>(soup.positions.size());
-    for (uint32_t v : f) soup.positions.push_back(torus.positions[v]);
-    soup.faces.push_back({first, first + 1, first + 2});
-  }
+  const Mesh soup = testing::MakeTriangleSoup(torus);
   RemeshOptions options;
   options.levels = 2;
   RemeshReport torus_report, soup_report;
