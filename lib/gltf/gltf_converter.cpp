@@ -13,6 +13,7 @@
 #include "gltf/gltf_io.h"
 #include "gltf/stream_decoder.h"
 #include "gltf/textured_compression.h"
+#include "mesh/repair.h"
 #include "mesh_io/file_bytes.h"
 #include "mesh_io/mesh_io.h"
 
@@ -33,7 +34,10 @@ bool IsGltfFile(const std::string& path) {
 
 StatusOr<CompressedGeometry> CompressWithEqmesh(const ConvertOptions& options, const PrimitiveGeometry& primitive) {
   const bool textured = !primitive.textures.empty();
-  const Mesh welded = textured ? WeldedByPosition(primitive.mesh) : Mesh();
+  // UV seams split a textured primitive's positions; welded (as Remesh() would),
+  // its vertex count is the surface's. Only where the weld keeps it manifold:
+  // parts that merely touch stay apart.
+  const Mesh welded = textured ? WeldSeams(primitive.mesh) : Mesh();
   const Mesh& mesh = textured ? welded : primitive.mesh;
   RemeshReport remesh_report;
   RemeshOptions remesh = options.remesh;

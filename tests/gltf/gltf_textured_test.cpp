@@ -109,10 +109,10 @@ TEST(GltfTextured, ConversionIsDeterministicAndValidatorClean) {
   }
 }
 
-// A vertex-coloured sphere: COLOR_0 = a smooth RGB ramp over the position, no
+// A vertex-coloured mesh: COLOR_0 = a smooth RGB ramp over the position, no
 // material (glTF's default one).
-tinygltf::Model VertexColouredSphere() {
-  const Mesh sphere = testing::MakeIcosphere(4);
+tinygltf::Model VertexColoured(const Mesh& mesh) {
+  const Mesh& sphere = mesh;
   auto model = gltf::ModelFromMesh(sphere);
   EXPECT_TRUE(model.ok());
   std::vector<float> colors;
@@ -129,6 +129,8 @@ tinygltf::Model VertexColouredSphere() {
   model->meshes[0].primitives[0].attributes["COLOR_0"] = static_cast<int>(model->accessors.size()) - 1;
   return *model;
 }
+
+tinygltf::Model VertexColouredSphere() { return VertexColoured(testing::MakeIcosphere(4)); }
 
 TEST(GltfTextured, VertexColoursAreBakedIntoABaseColourTexture) {
   const tinygltf::Model original = VertexColouredSphere();
@@ -153,6 +155,20 @@ TEST(GltfTextured, VertexColoursAreBakedIntoABaseColourTexture) {
   auto d = CompareColors(a->mesh, a->color, b->mesh, b->color, {100000});
   ASSERT_TRUE(d.ok()) << d.status().ToString();
   EXPECT_GT(d->psnr_db, 35.0) << "colour rms " << d->rms;
+}
+
+TEST(GltfTextured, TouchingPartsAreWeldedOnlyWhereThatKeepsTheSurfaceManifold) {
+  // Two spheres touching at one point through two vertices: a weld of every
+  // coincident pair would pinch them there, and the remesher refuses a pinch.
+  const Mesh sphere = testing::MakeIcosphere(3);
+  const Mesh touching = testing::WithComponent(sphere, sphere, 2.0 * sphere.positions[0]);
+  tinygltf::Model model = VertexColoured(touching);
+  gltf::ConvertOptions options;
+  options.remesh.levels = 2;
+  options.codec.lambda = 1.0;
+  auto report = gltf::ConvertModel(&model, options);
+  ASSERT_TRUE(report.ok()) << report.status().ToString();
+  EXPECT_EQ(report->compressed, 1u) << report->primitives[0].reason;
 }
 
 }  // namespace
