@@ -121,46 +121,27 @@ bool RevertNonOrientableWelds(const MeshTopology& welded, const WeldGroups& g, s
 // (WeldSeams) must leave neither where the input had none.
 enum class WeldMode { kBeforeRepair, kAlone };
 
-// Groups whose weld left a pinched vertex (fans joined, but not into one) or an
-// edge the weld joined whose two faces run it the same way; returns whether any
-// was found.
-bool RevertUnrepairedWelds(const Mesh& input, const MeshTopology& welded, const WeldGroups& g,
-                           std::vector<uint8_t>* reverted) {
-  bool found = false;
-  std::vector<uint32_t> labels;
-  for (uint32_t v = 0; v < welded.num_vertices(); ++v) {
-    if (IsActiveRep(g, *reverted, v) && welded.VertexFans(v, &labels) > 1) {
-      (*reverted)[v] = 1;
-      found = true;
-    }
-  }
-  for (uint32_t e = 0; e < welded.num_edges(); ++e) {
-    if (welded.IsNonManifoldEdge(e) || !welded.IsInconsistentEdge(e) || !WeldJoinedEdge(welded, e, input)) continue;
-    for (uint32_t v : welded.EdgeVertices(e)) {
-      if (IsActiveRep(g, *reverted, v)) {
-        (*reverted)[v] = 1;
-        found = true;
-      }
-    }
-  }
-  return found;
-}
-
-// Marks the groups at fault in `welded`; returns whether any was found.
+// Marks the groups at fault in `welded`; returns whether any was found. At
+// fault: a weld that closes a non-orientable loop, joins no fans (it only
+// pinches sheets together at a point) or joins an edge into more than two
+// faces; alone (WeldSeams), also one that leaves a pinch (fans joined, but not
+// into one) or joins an edge whose two faces run it the same way.
 bool RevertFaultyWelds(const Mesh& input, const MeshTopology& welded, const WeldGroups& g, WeldMode mode,
                        std::vector<uint8_t>* reverted) {
+  const bool alone = mode == WeldMode::kAlone;
   bool found = RevertNonOrientableWelds(welded, g, reverted);
-  if (mode == WeldMode::kAlone) found = RevertUnrepairedWelds(input, welded, g, reverted) || found;
   std::vector<uint32_t> labels;
   for (uint32_t v = 0; v < welded.num_vertices(); ++v) {
-    // A weld that joins no fans only pinches sheets together at a point.
-    if (IsActiveRep(g, *reverted, v) && welded.VertexFans(v, &labels) >= g.fans_apart[v]) {
+    if (!IsActiveRep(g, *reverted, v)) continue;
+    const uint32_t fans = welded.VertexFans(v, &labels);
+    if (fans >= g.fans_apart[v] || (alone && fans > 1)) {
       (*reverted)[v] = 1;
       found = true;
     }
   }
   for (uint32_t e = 0; e < welded.num_edges(); ++e) {
-    if (!welded.IsNonManifoldEdge(e) || !WeldJoinedEdge(welded, e, input)) continue;
+    const bool faulty = welded.IsNonManifoldEdge(e) || (alone && welded.IsInconsistentEdge(e));
+    if (!faulty || !WeldJoinedEdge(welded, e, input)) continue;
     for (uint32_t v : welded.EdgeVertices(e)) {
       if (IsActiveRep(g, *reverted, v)) {
         (*reverted)[v] = 1;
