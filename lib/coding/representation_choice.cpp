@@ -116,9 +116,12 @@ AsIsCandidate EncodeAsIs(const SemiRegularMesh& as_is_mesh, const EncodeOptions&
 StatusOr<AsIsCandidate> UntargetedAsIs(const SemiRegularMesh& as_is_mesh, const EncodeOptions& options,
                                        const RepresentationOptions& representation,
                                        const std::vector<uint8_t>& stream, EncodeReport* remeshed) {
-  EQMESH_RETURN_IF_ERROR(EnsureMeasured(stream, options, remeshed));
+  // Every stream here is measured against the same original: prepared once
+  // (an encode at a bare lambda without --measure has not prepared it).
   EncodeOptions measured = options;
   measured.measure_psnr = true;
+  measured = WithPreparedOriginal(measured);
+  EQMESH_RETURN_IF_ERROR(EnsureMeasured(stream, measured, remeshed));
   AsIsCandidate at_lambda = EncodeAsIs(as_is_mesh, measured);
   if (!at_lambda.stream.ok()) return at_lambda;
   const EncodeReport& r = at_lambda.report;
