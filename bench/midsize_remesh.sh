@@ -34,9 +34,12 @@ for rel in "${all[@]}"; do
   python3 - "$name" "$json" <<'PY'
 import json, sys
 d = json.loads(sys.argv[2])
+psnr = d.get("psnr_db", float("nan"))
+if psnr is None:
+    psnr = float("inf")  # the remesh is the input's surface (or keeps it exactly)
 print("%-26s %7d %6d %4d %8d %7.3f %7.2f %6d %7d %7.2f %s" % (
     sys.argv[1], d["input_vertices"], d["base_vertices"], d["levels"], d["output_vertices"],
-    d["normal_fraction"], d.get("psnr_db", float("nan")),
+    d["normal_fraction"], psnr,
     d.get("flipped_faces", -1) + d.get("degenerate_faces", 0), d.get("sliver_faces", -1),
     d["seconds"], "; ".join(d.get("notes", []))))
 PY

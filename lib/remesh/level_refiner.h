@@ -12,6 +12,7 @@
 
 #include "mesh/semi_regular.h"
 #include "mesh/triangle_bvh.h"
+#include "remesh/crease_curves.h"
 #include "remesh/level_domain.h"
 #include "remesh/param_point.h"
 #include "remesh/piercing.h"
@@ -27,18 +28,23 @@ struct EdgeChoice {
   VertexKind kind = VertexKind::kNonNormal;
   bool needs_forward = false;
   uint32_t on_face = kNoFace;  // input triangle the position lies on, where known
+  CreaseSite crease;           // where the position lies on a crease chain, if it does
 };
 
 class LevelRefiner {
  public:
   LevelRefiner(const SemiRegularHierarchy& h, int j, const InputSurface& s, const RemeshParts& parts,
-               std::vector<Vec3>* positions, const std::vector<uint32_t>& on_faces, std::vector<ParamPoint>* params)
-      : h_(h), j_(j), s_(s), parts_(parts), dom_(h, j), pos_(*positions), on_face_(on_faces), params_(*params) {
+               std::vector<Vec3>* positions, const std::vector<uint32_t>& on_faces, std::vector<ParamPoint>* params,
+               const std::vector<CreasePlace>* creases)
+      : h_(h), j_(j), s_(s), parts_(parts), dom_(h, j), pos_(*positions), on_face_(on_faces), params_(*params),
+        creases_(creases) {
     fine_ = RefinedIn3d(dom_.faces().size(), s.mesh->faces.size());
   }
 
   void Run(const StencilTable& stencils, std::vector<Vec3>* positions, std::vector<uint32_t>* on_faces,
            std::vector<VertexKind>* kinds, LevelStats* stats);
+  // The crease places of the odd vertices Run placed, in their order.
+  void AppendCreasePlaces(std::vector<CreasePlace>* places) const;
   std::vector<ParamPoint> TakeParams() { return std::move(params_out_); }
 
  private:
@@ -50,6 +56,7 @@ class LevelRefiner {
                     Vec3d* u) const;
   bool RelaxedChoice(uint32_t k, double blend, Chart* chart, EdgeChoice* out) const;
   EdgeChoice BoundaryPoint(uint32_t k) const;
+  std::optional<EdgeChoice> CreasePoint(uint32_t k) const;
   bool InKite(const Vec3d& u, int slot) const;
   bool InDiamond(const Vec3d& u, int slot) const;
   Vec3 MidpointPosition(uint32_t k, const Vec3d& u, Chart* chart, uint32_t* on_face) const;
@@ -105,6 +112,7 @@ class LevelRefiner {
   const std::vector<Vec3>& pos_;
   const std::vector<uint32_t>& on_face_;  // of pos_
   const std::vector<ParamPoint>& params_;
+  const std::vector<CreasePlace>* creases_;  // of pos_; null: no crease is followed
   std::vector<uint32_t> bucket_offsets_, bucket_items_;
   std::vector<Vec3> predicted_;
   std::vector<LocalFrame> frames_;

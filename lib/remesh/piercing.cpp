@@ -182,6 +182,7 @@ EdgeChoice LevelRefiner::MidpointChoice(uint32_t k) const {
 
 EdgeChoice LevelRefiner::PierceEdge(uint32_t k, Chart* chart) const {
   if (dom_.Sides(k).right == kNoNeighbour) return BoundaryPoint(k);
+  if (std::optional<EdgeChoice> crease = CreasePoint(k)) return *crease;
   const std::vector<EdgeChoice> normal = NormalCandidates(k, chart, 1);
   return normal.empty() ? MidpointChoice(k) : normal.front();
 }
@@ -298,6 +299,31 @@ EdgeChoice LevelRefiner::BoundaryPoint(uint32_t k) const {
   out.u = Midpoint(a);
   out.kind = VertexKind::kBoundary;
   return out;
+}
+
+// An edge running along a crease chain: the chain's arc-length midpoint
+// between its ends (crease_curves.h), at the parametric midpoint of the edge.
+std::optional<EdgeChoice> LevelRefiner::CreasePoint(uint32_t k) const {
+  if (!creases_ || s_.creases.empty()) return std::nullopt;
+  const Edge& e = h_.OddEdge(j_, k);
+  const std::optional<CreaseSite> site =
+      s_.creases.SplitSite((*creases_)[e[0]], pos_[e[0]], (*creases_)[e[1]], pos_[e[1]]);
+  if (!site) return std::nullopt;
+  EdgeChoice out;
+  out.position = s_.creases.PositionAt(*site, *s_.mesh, &out.on_face);
+  if (!OnPart(out.on_face, EdgePart(k))) return std::nullopt;
+  out.u = Midpoint(dom_.Sides(k).left_slot);
+  out.kind = VertexKind::kNonNormal;
+  out.crease = *site;
+  return out;
+}
+
+void LevelRefiner::AppendCreasePlaces(std::vector<CreasePlace>* places) const {
+  for (const EdgeChoice& c : choice_) {
+    CreasePlace place;
+    place.site = c.crease;
+    places->push_back(place);
+  }
 }
 
 // Surface point at chart parameter u of face `root`: the input triangle whose
@@ -539,6 +565,7 @@ InputSurface::InputSurface(const Mesh& m, const TriangleBvh& b, std::vector<uint
   }
   face_normals = FaceCrossProducts(m);
   face_part = FacePartsForFoldTest(m);
+  creases = CreaseCurves(m);
   normals.assign(m.positions.size(), Vec3::Zero());
   for (uint32_t f = 0; f < m.faces.size(); ++f) {
     for (uint32_t v : m.faces[f]) normals[v] += face_normals[f];
@@ -595,12 +622,16 @@ RemeshParts BaseFaceParts(const InputSurface& surface, const std::vector<uint32_
 
 void RefineLevel(const SemiRegularHierarchy& hierarchy, int j, const InputSurface& surface, const RemeshParts& parts,
                  const StencilTable& stencils, std::vector<Vec3>* positions, std::vector<uint32_t>* on_faces,
-                 std::vector<VertexKind>* kinds, std::vector<ParamPoint>* params, LevelStats* stats) {
+                 std::vector<VertexKind>* kinds, std::vector<ParamPoint>* params, LevelStats* stats,
+                 std::vector<CreasePlace>* creases) {
   *stats = LevelStats();
   std::vector<Vec3> level = *positions;
   const std::vector<uint32_t> level_faces = *on_faces;
-  remesh_internal::LevelRefiner refiner(hierarchy, j, surface, parts, &level, level_faces, params);
+  const std::vector<CreasePlace> level_creases = creases ? *creases : std::vector<CreasePlace>();
+  remesh_internal::LevelRefiner refiner(hierarchy, j, surface, parts, &level, level_faces, params,
+                                        creases ? &level_creases : nullptr);
   refiner.Run(stencils, positions, on_faces, kinds, stats);
+  if (creases) refiner.AppendCreasePlaces(creases);
   *params = refiner.TakeParams();
 }
 

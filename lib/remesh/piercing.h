@@ -43,6 +43,7 @@
 #include "mesh/mesh.h"
 #include "mesh/semi_regular.h"
 #include "mesh/triangle_bvh.h"
+#include "remesh/crease_curves.h"
 #include "remesh/param_point.h"
 #include "remesh/quality_checks.h"
 #include "wavelet/butterfly.h"
@@ -58,6 +59,7 @@ struct InputSurface {
   std::vector<Vec3> face_normals;       // FaceCrossProducts (not unit)
   std::vector<Vec3> normals;            // area-weighted vertex normals (not unit)
   std::vector<uint32_t> face_part;      // FacePartsForFoldTest (empty: one part)
+  CreaseCurves creases;                 // followed by remesh edges along them
   // Input edges with one face (its boundary curves), by LowerX, and the longest
   // of them. Built once here, not per untangling (it runs after every level).
   std::vector<Edge> boundary_edges;
@@ -118,9 +120,13 @@ struct LevelStats {
 // input search for faces that plainly agree with the surface under their corners.
 // `params` (one per input vertex) moves from level j to j+1.
 // `stencils`: BuildButterflyStencils(hierarchy, j), built by the caller so the
-// untangling can reuse it (StencilCache).
+// untangling can reuse it (StencilCache). `creases` (optional) runs alongside
+// `positions` too: where each vertex lies on the input's crease chains; edges
+// along a chain are refined onto it (crease_curves.h) and the odd vertices'
+// places are appended.
 void RefineLevel(const SemiRegularHierarchy& hierarchy, int j, const InputSurface& surface, const RemeshParts& parts,
                  const StencilTable& stencils, std::vector<Vec3>* positions, std::vector<uint32_t>* on_faces,
-                 std::vector<VertexKind>* kinds, std::vector<ParamPoint>* params, LevelStats* stats);
+                 std::vector<VertexKind>* kinds, std::vector<ParamPoint>* params, LevelStats* stats,
+                 std::vector<CreasePlace>* creases = nullptr);
 
 }  // namespace eqmesh

@@ -231,12 +231,16 @@ bool LevelRefiner::TryAlternatives(uint32_t k, const PlacementScore& before, Cha
     if (RelaxedChoice(k, blend, chart, &relaxed)) options.push_back(relaxed);
   }
   const EdgeChoice current = choice_[k];
+  // A crease point gives way only to fewer folds: its shape and lopsidedness
+  // are the crease's.
+  const bool on_crease = current.crease.chain != kNoCreaseChain;
   EdgeChoice best = current;
   PlacementScore best_score = before;
   for (const EdgeChoice& o : options) {
     choice_[k] = o;
     if (!ChildrenValid(dom_.Sides(k).left) || !ChildrenValid(dom_.Sides(k).right)) continue;
     const PlacementScore score = ScorePlacement(k);
+    if (on_crease && score.folds >= before.folds) continue;
     if (score < best_score) {
       best_score = score;
       best = o;

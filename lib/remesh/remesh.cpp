@@ -262,6 +262,7 @@ struct Refinement {
   std::vector<Vec3> positions;
   std::vector<uint32_t> on_faces;  // input triangle under each position (piercing.h)
   std::vector<VertexKind> kinds;
+  std::vector<CreasePlace> creases;  // where each position lies on the input's crease chains
   int levels = 0;
   std::vector<double> estimated_psnr_db_per_level;
   std::vector<StencilTable> stencils;  // of each refinement, for the untangling
@@ -288,7 +289,9 @@ void UntangleNewLevel(const InputSurface& surface, const std::vector<uint32_t>& 
   UntangleFinestLevel(r->hierarchy, surface, r->parts, folded, r->stencils, &r->positions, &r->kinds,
                       LevelUse::kPiercedFrom, &r->folded_faces);
   for (size_t v = 0; v < before.size(); ++v) {
-    if (!(r->positions[v] == before[v])) r->on_faces[v] = kNoFace;
+    if (r->positions[v] == before[v]) continue;
+    r->on_faces[v] = kNoFace;
+    r->creases[v] = CreasePlace();
   }
   r->untangle_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -335,6 +338,9 @@ StatusOr<Refinement> RefineAllLevels(const RefineContext& c) {
   const uint32_t nb = static_cast<uint32_t>(c.base.base_to_input.size());
   for (uint32_t v : c.base.base_to_input) {
     r.positions.push_back(c.surface_mesh.positions[v]);
+    CreasePlace place;
+    place.input_vertex = v;
+    r.creases.push_back(place);
     const bool has_face = c.surface.face_offsets[v] < c.surface.face_offsets[v + 1];
     r.on_faces.push_back(has_face ? c.surface.vertex_faces[c.surface.face_offsets[v]] : kNoFace);
   }
@@ -362,7 +368,7 @@ StatusOr<Refinement> RefineAllLevels(const RefineContext& c) {
     LevelStats stats;
     r.stencils.push_back(BuildButterflyStencils(r.hierarchy, r.levels));
     RefineLevel(r.hierarchy, r.levels, c.surface, r.parts, r.stencils.back(), &r.positions, &r.on_faces, &r.kinds,
-                &params, &stats);
+                &params, &stats, &r.creases);
     r.estimated_psnr_db_per_level.push_back(EstimatedPsnrDb(c.diagonal, stats.rms_error));
     ++r.levels;
     UntangleNewLevel(c.surface, stats.folded_faces, &r);

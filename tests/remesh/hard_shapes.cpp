@@ -164,4 +164,54 @@ int ClosedGenus(const Mesh& mesh) {
   return static_cast<int>((2 - euler) / 2);
 }
 
+Mesh MakeGridBox(double sx, double sy, double sz, int cells_per_unit) {
+  Mesh mesh;
+  std::map<std::array<long long, 3>, uint32_t> index;
+  const auto vertex = [&](const Vec3& p) {
+    const std::array<long long, 3> key{std::llround(p.x() * 1e9), std::llround(p.y() * 1e9), std::llround(p.z() * 1e9)};
+    const auto [it, added] = index.emplace(key, static_cast<uint32_t>(mesh.positions.size()));
+    if (added) mesh.positions.push_back(p);
+    return it->second;
+  };
+  // Each side: an origin and two edge vectors ordered so a x b points outward.
+  const Vec3 o(0, 0, 0), x(sx, 0, 0), y(0, sy, 0), z(0, 0, sz);
+  const std::array<std::array<Vec3, 3>, 6> sides{{{o, y, x}, {z, x, y}, {o, z, y}, {x, y, z}, {o, x, z}, {y, z, x}}};
+  for (const auto& [origin, a, b] : sides) {
+    const int na = std::max(1, static_cast<int>(std::lround(a.norm() * cells_per_unit)));
+    const int nb = std::max(1, static_cast<int>(std::lround(b.norm() * cells_per_unit)));
+    const auto at = [&](int i, int j) { return vertex(origin + a * (double(i) / na) + b * (double(j) / nb)); };
+    for (int j = 0; j < nb; ++j) {
+      for (int i = 0; i < na; ++i) {
+        const uint32_t p = at(i, j), q = at(i + 1, j), r = at(i, j + 1), s = at(i + 1, j + 1);
+        mesh.faces.push_back({p, q, s});
+        mesh.faces.push_back({p, s, r});
+      }
+    }
+  }
+  return mesh;
+}
+
+Mesh MakeCappedCylinder(double r, double h, int around, int rings) {
+  Mesh mesh;
+  for (int k = 0; k < rings; ++k) {
+    for (int i = 0; i < around; ++i) {
+      const double a = 2.0 * M_PI * i / around;
+      mesh.positions.emplace_back(r * std::cos(a), r * std::sin(a), h * k / (rings - 1));
+    }
+  }
+  const uint32_t bottom = static_cast<uint32_t>(mesh.positions.size());
+  mesh.positions.emplace_back(0.0, 0.0, 0.0);
+  mesh.positions.emplace_back(0.0, 0.0, h);
+  const auto at = [&](int k, int i) { return static_cast<uint32_t>(k * around + (i % around)); };
+  for (int i = 0; i < around; ++i) {
+    mesh.faces.push_back({bottom, at(0, i + 1), at(0, i)});
+    mesh.faces.push_back({bottom + 1, at(rings - 1, i), at(rings - 1, i + 1)});
+    for (int k = 0; k + 1 < rings; ++k) {
+      mesh.faces.push_back({at(k, i), at(k, i + 1), at(k + 1, i + 1)});
+      mesh.faces.push_back({at(k, i), at(k + 1, i + 1), at(k + 1, i)});
+    }
+  }
+  return mesh;
+}
+
 }  // namespace eqmesh::testing

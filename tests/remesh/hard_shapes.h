@@ -19,6 +19,15 @@ Mesh MakeSpikyStar(double length = 2.0);
 // smoothed by Laplacian steps so that no crease is sharp.
 Mesh MakePretzel();
 
+// The closed surface of the box [0, sx] x [0, sy] x [0, sz], each side a grid
+// of about `cells_per_unit` squares per unit length (two triangles each): sharp
+// 90-degree creases along its twelve edges, corners of three creases.
+Mesh MakeGridBox(double sx, double sy, double sz, int cells_per_unit);
+
+// A closed cylinder of radius r and height h around z, `around` vertices per
+// ring and `rings` rings, capped by fans: two creases that are closed loops.
+Mesh MakeCappedCylinder(double r, double h, int around, int rings);
+
 // Genus of a closed, connected, manifold mesh from its Euler characteristic.
 int ClosedGenus(const Mesh& mesh);
 
