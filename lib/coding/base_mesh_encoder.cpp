@@ -287,6 +287,7 @@ MeshChunkEncoding FromCompact(CompactBaseEncoding c, const CompactVariant& v) {
   out.depth = v.depth;
   out.compact = true;
   out.tangential_quarters = v.tangential_quarters;
+  out.parallelogram_choice = v.parallelogram_choice;
   return out;
 }
 
@@ -300,6 +301,9 @@ StatusOr<std::vector<MeshChunkEncoding>> EncodeCompactCandidates(const Mesh& bas
       for (const int quarters : kSurfaceTangentialQuarters) {
         if (quarters == kGridTangentialQuarters || surface_frames) variants.push_back({depth, quarters});
       }
+      // A surface (the as-is representation) may hold creases, where the mean of
+      // the parallelograms fails (compact_positions.h); a remeshed base is smooth.
+      if (surface_frames) variants.push_back({depth, kGridTangentialQuarters, true});
     }
   }
   EQMESH_ASSIGN_OR_RETURN(std::vector<CompactBaseEncoding> chunks, EncodeCompactBaseVariants(base, variants));

@@ -54,6 +54,7 @@ struct MeshChunkEncoding {
                                              // quarter bit; Draco: whole bits)
   bool compact = false;                      // a compact chunk (stream flag kCompactBase), else Draco
   int tangential_quarters = 4;               // compact: tangential step in quarter grid steps
+  bool parallelogram_choice = false;         // compact: grid with the parallelogram choice (stream 1.7)
   CompactLayout layout = CompactLayout::kPositionsAfter;  // compact: its layout (a stream flag)
 };
 

@@ -47,18 +47,22 @@ namespace eqmesh::bitstream {
 
 constexpr uint8_t kMagic[4] = {'E', 'Q', 'M', 'S'};
 constexpr uint8_t kVersionMajor = 1;
-constexpr uint8_t kVersionMinor = 6;  // 1.1: coder 1 (zerotree); 1.2: kCompactBase;
+constexpr uint8_t kVersionMinor = 7;  // 1.1: coder 1 (zerotree); 1.2: kCompactBase;
                                       // 1.3: kTangentialContext; 1.4: kHasAtlas;
-                                      // 1.5: kCompactKept; 1.6: kCompactPositionsAfter
+                                      // 1.5: kCompactKept; 1.6: kCompactPositionsAfter;
+                                      // 1.7: the parallelogram choice (compact_positions.h)
 // A stream carries the lowest minor version that has every feature it uses, so an
 // optional feature leaves the streams without it byte-identical: 1.3 without an
 // atlas or a compact kept chunk, 1.4 with an atlas, 1.5 with a compact kept chunk,
 // 1.6 with compact chunks in the positions-after layout (the encoder picks the
-// layout per stream, with the base's depth: the older one wins on small bases).
+// layout per stream, with the base's depth: the older one wins on small bases), 1.7
+// (flag kParallelogramChoice) with a compact base chunk whose mode byte is
+// kGridChoiceModeByte.
 constexpr uint8_t kVersionMinorWithoutAtlas = 3;
 constexpr uint8_t kVersionMinorAtlas = 4;
 constexpr uint8_t kVersionMinorCompactKept = 5;
 constexpr uint8_t kVersionMinorPositionsAfter = 6;
+constexpr uint8_t kVersionMinorParallelogramChoice = 7;
 
 // Wavelet transform the level chunks are expressed in. Pinned values.
 enum class TransformId : uint8_t {
@@ -82,9 +86,10 @@ enum HeaderFlag : uint8_t {
   kHasAtlas = 1u << 3,           // an atlas chunk follows the kept (or base) chunk (1.4)
   kCompactKept = 1u << 4,        // the kept chunk is a compact chunk, not Draco (1.5)
   kCompactPositionsAfter = 1u << 5,  // compact chunks code positions after connectivity (1.6)
+  kParallelogramChoice = 1u << 6,    // the compact base chunk's axis grid has the parallelogram choice (1.7)
 };
-constexpr uint8_t kKnownFlags =
-    kHasKeptExactly | kCompactBase | kTangentialContext | kHasAtlas | kCompactKept | kCompactPositionsAfter;
+constexpr uint8_t kKnownFlags = kHasKeptExactly | kCompactBase | kTangentialContext | kHasAtlas | kCompactKept |
+                                kCompactPositionsAfter | kParallelogramChoice;
 
 // lambda and the tangential factor travel as log2 codes in 1/kLogCodeScale steps;
 // the encoder codes with the value the decoder will rebuild from the code.

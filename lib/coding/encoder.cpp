@@ -256,6 +256,10 @@ Pass FinishPass(StreamHeader header, const Prepared& prep, const MeshChunkEncodi
     header.flags |= bitstream::kCompactPositionsAfter;
     header.version_minor = std::max(header.version_minor, bitstream::kVersionMinorPositionsAfter);
   }
+  if (base.compact && base.parallelogram_choice) {
+    header.flags |= bitstream::kParallelogramChoice;
+    header.version_minor = std::max(header.version_minor, bitstream::kVersionMinorParallelogramChoice);
+  }
   pass.bytes = Assemble(header, base.bytes, KeptBytes(prep, base), chunks, &pass.report);
   pass.report.lambda = header.lambda();
   pass.report.tangential_factor = header.tangential_factor();

@@ -87,6 +87,9 @@ Status ReadCodingSetup(ByteReader* r, StreamHeader* h) {
   if (h->has_positions_after() && !h->has_compact_base() && !h->has_compact_kept()) {
     return r->Corrupt("positions-after flag on a stream without a compact chunk");
   }
+  if ((h->flags & bitstream::kParallelogramChoice) != 0 && !(h->has_compact_base() && h->has_positions_after())) {
+    return r->Corrupt("parallelogram-choice flag on a stream without a positions-after compact base");
+  }
   if (h->has_tangential_context() && coder != static_cast<uint8_t>(bitstream::CoderId::kEq)) {
     return r->Corrupt("tangential-context flag on a stream whose coder is not EQ");
   }

@@ -35,6 +35,10 @@ Status ReadChunkHead(ByteReader* r, uint32_t max_vertices, CompactLayout layout,
   if (layout == CompactLayout::kPositionsAfter) {
     uint8_t quarters = 0;
     EQMESH_RETURN_IF_ERROR(r->ReadU8(&quarters));
+    if (quarters == kGridChoiceModeByte) {
+      head->coding.parallelogram_choice = true;
+      quarters = kGridTangentialQuarters;
+    }
     if (quarters < kGridTangentialQuarters) return r->Corrupt("tangential step below the grid step");
     head->coding.tangential_quarters = quarters;
   }

@@ -87,7 +87,9 @@ class ChunkWriter {
     w.PutU8(static_cast<uint8_t>(coding.grid.bits));
     for (const float o : coding.grid.origin) w.PutF32(o);
     w.PutF32(coding.grid.step);
-    if (layout_ == CompactLayout::kPositionsAfter) w.PutU8(static_cast<uint8_t>(coding.tangential_quarters));
+    if (layout_ == CompactLayout::kPositionsAfter) {
+      w.PutU8(coding.parallelogram_choice ? kGridChoiceModeByte : static_cast<uint8_t>(coding.tangential_quarters));
+    }
     const std::vector<uint8_t> payload = enc.Finish();
     if (mesh_.positions.size() > kCompactMaxVerticesPerByte * payload.size() + kCompactFaceSlack) {
       return NotCompact("more vertices per byte than a decoder accepts");
@@ -237,9 +239,14 @@ StatusOr<CompactPositionCoding> MakeCoding(const Mesh& mesh, const CompactVarian
       (layout == CompactLayout::kInterleaved && v.tangential_quarters != kGridTangentialQuarters)) {
     return InvalidArgument("compact base chunk: tangential step out of range");
   }
+  if (v.parallelogram_choice && (layout != CompactLayout::kPositionsAfter ||
+                                 v.tangential_quarters != kGridTangentialQuarters)) {
+    return InvalidArgument("compact base chunk: the parallelogram choice needs the positions-after axis grid");
+  }
   CompactPositionCoding coding;
   EQMESH_ASSIGN_OR_RETURN(coding.grid, MakeGrid(mesh, v.depth));
   coding.tangential_quarters = v.tangential_quarters;
+  coding.parallelogram_choice = v.parallelogram_choice;
   return coding;
 }
 

@@ -31,6 +31,7 @@ inline constexpr int kCompactMaxTangentialQuarters = 255;
 struct CompactVariant {
   double depth = 0;
   int tangential_quarters = kGridTangentialQuarters;
+  bool parallelogram_choice = false;  // axis grid, positions-after layout only (stream 1.7)
 };
 
 // The positions-after chunk for each variant, the connectivity traversed once.

@@ -109,11 +109,37 @@ std::array<int32_t, 3> MeanIndex(const CompactGrid& grid, const std::array<int64
 struct GridPrediction {
   std::array<int32_t, 3> value{};
   CompactResidualModels* models = nullptr;
+  std::vector<std::array<int32_t, 3>> singles;  // each parallelogram alone, where there are two or more
 };
 
+// Models of the parallelogram choice: "a single one?" by the number of
+// parallelograms (2, 3, 4+), then the unary steps of its position.
+struct ChoiceModels {
+  std::array<AdaptiveBit, 3> single;
+  std::array<AdaptiveBit, 8> index;
+
+  AdaptiveBit* Single(size_t count) { return &single[std::min<size_t>(count, 4) - 2]; }
+  AdaptiveBit* Step(size_t i) { return &index[std::min<size_t>(i, index.size() - 1)]; }
+};
+
+// Estimated bits of a residual triple under an Exp-Golomb-like code: what the
+// encoder's choice compares.
+double EstimatedResidualBits(const std::array<int64_t, 3>& r) {
+  double bits = 0.0;
+  for (const int64_t x : r) bits += x == 0 ? 1.0 : 2.0 * std::log2(static_cast<double>(x < 0 ? -x : x) + 1.0) + 2.0;
+  return bits;
+}
+
+// A single parallelogram replaces the mean only where it saves at least this many
+// estimated bits beyond log2(count) for its index.
+constexpr double kChoiceMarginBits = 2.0;
+
+// The prediction of v: the mean of its parallelograms (with_singles: and each one
+// alone), else of its neighbours, else the previous vertex.
 GridPrediction PredictIndex(const Neighbourhood& hood, const CompactGrid& grid, uint32_t v, const Quanta& quanta,
-                            PositionModels* models) {
+                            PositionModels* models, bool with_singles) {
   std::array<int64_t, 3> parallelograms{}, neighbours{};
+  std::vector<std::array<int32_t, 3>> singles;
   int num_parallelograms = 0, num_neighbours = 0;
   uint64_t activity = 0;
   hood.Visit(
@@ -124,11 +150,17 @@ GridPrediction PredictIndex(const Neighbourhood& hood, const CompactGrid& grid, 
         activity += hood.L1(x);
       },
       [&](uint32_t x, uint32_t y, uint32_t z) {
-        for (size_t c = 0; c < 3; ++c) parallelograms[c] += int64_t{quanta[x][c]} + quanta[y][c] - quanta[z][c];
+        std::array<int64_t, 3> one{};
+        for (size_t c = 0; c < 3; ++c) {
+          one[c] = int64_t{quanta[x][c]} + quanta[y][c] - quanta[z][c];
+          parallelograms[c] += one[c];
+        }
+        if (with_singles) singles.push_back(MeanIndex(grid, one, 1));
         ++num_parallelograms;
       });
   const int kind = Neighbourhood::Kind(num_parallelograms, num_neighbours);
   GridPrediction p;
+  if (num_parallelograms >= 2) p.singles = std::move(singles);
   p.models = models->Of(kAxis, kind, num_neighbours > 0 ? activity / static_cast<uint64_t>(num_neighbours) : 0);
   p.value = kind == kSeed         ? (v > 0 ? quanta[v - 1] : SeedPrediction(grid, {}))
             : kind == kNeighbours ? MeanIndex(grid, neighbours, num_neighbours)
@@ -264,16 +296,57 @@ class FrameCoder {
 
 Vec3 ToVec3(const V3& a) { return Vec3(a[0], a[1], a[2]); }
 
-std::vector<Vec3> EncodeOnGrid(RangeEncoder* enc, const CompactGrid& grid, const std::vector<Face>& faces,
+// The encoder's parallelogram choice for v (compact_positions.h): codes it and
+// returns the prediction it selects.
+std::array<int32_t, 3> ChooseParallelogram(RangeEncoder* enc, ChoiceModels* models, const GridPrediction& p,
+                                           const std::array<int32_t, 3>& target) {
+  const auto bits_from = [&](const std::array<int32_t, 3>& prediction) {
+    std::array<int64_t, 3> r{};
+    for (size_t c = 0; c < 3; ++c) r[c] = int64_t{target[c]} - prediction[c];
+    return EstimatedResidualBits(r);
+  };
+  const size_t count = p.singles.size();
+  const double index_bits = std::log2(static_cast<double>(count));
+  double best = bits_from(p.value) - kChoiceMarginBits;
+  size_t pick = count;
+  for (size_t i = 0; i < count; ++i) {
+    const double bits = bits_from(p.singles[i]) + index_bits;
+    if (bits < best) {
+      best = bits;
+      pick = i;
+    }
+  }
+  enc->EncodeBit(models->Single(count), pick < count);
+  if (pick == count) return p.value;
+  for (size_t i = 0; i + 1 < count; ++i) {
+    enc->EncodeBit(models->Step(i), pick > i);
+    if (pick == i) break;
+  }
+  return p.singles[pick];
+}
+
+// The decoder's side of ChooseParallelogram (a failed read shows in dec->ok()).
+std::array<int32_t, 3> ReadParallelogramChoice(RangeDecoder* dec, ChoiceModels* models, const GridPrediction& p) {
+  const size_t count = p.singles.size();
+  if (!dec->DecodeBit(models->Single(count))) return p.value;
+  size_t pick = 0;
+  while (pick + 1 < count && dec->DecodeBit(models->Step(pick))) ++pick;
+  return p.singles[pick];
+}
+
+std::vector<Vec3> EncodeOnGrid(RangeEncoder* enc, const CompactPositionCoding& coding, const std::vector<Face>& faces,
                                const std::vector<Vec3>& positions) {
+  const CompactGrid& grid = coding.grid;
   const uint32_t n = static_cast<uint32_t>(positions.size());
   Quanta quanta(n);
   for (uint32_t v = 0; v < n; ++v) quanta[v] = QuantizeToGrid(grid, positions[v]);
   Neighbourhood hood(n, faces);
   PositionModels models;
+  ChoiceModels choices;
   std::vector<Vec3> decoded(n);
   for (uint32_t v = 0; v < n; ++v) {
-    const GridPrediction p = PredictIndex(hood, grid, v, quanta, &models);
+    GridPrediction p = PredictIndex(hood, grid, v, quanta, &models, coding.parallelogram_choice);
+    if (!p.singles.empty()) p.value = ChooseParallelogram(enc, &choices, p, quanta[v]);
     std::array<int64_t, 3> r{};
     for (size_t c = 0; c < 3; ++c) {
       r[c] = int64_t{quanta[v][c]} - p.value[c];
@@ -285,13 +358,16 @@ std::vector<Vec3> EncodeOnGrid(RangeEncoder* enc, const CompactGrid& grid, const
   return decoded;
 }
 
-bool DecodeOnGrid(RangeDecoder* dec, const CompactGrid& grid, const std::vector<Face>& faces, uint32_t n,
+bool DecodeOnGrid(RangeDecoder* dec, const CompactPositionCoding& coding, const std::vector<Face>& faces, uint32_t n,
                   std::vector<Vec3>* positions) {
+  const CompactGrid& grid = coding.grid;
   Quanta quanta(n, {0, 0, 0});
   Neighbourhood hood(n, faces);
   PositionModels models;
+  ChoiceModels choices;
   for (uint32_t v = 0; v < n && dec->ok(); ++v) {
-    const GridPrediction p = PredictIndex(hood, grid, v, quanta, &models);
+    GridPrediction p = PredictIndex(hood, grid, v, quanta, &models, coding.parallelogram_choice);
+    if (!p.singles.empty()) p.value = ReadParallelogramChoice(dec, &choices, p);
     std::array<int64_t, 3> r{};
     for (size_t c = 0; c < 3; ++c) {
       r[c] = DecodeResidual(dec, p.models);
@@ -347,14 +423,14 @@ bool DecodeInFrames(RangeDecoder* dec, const CompactPositionCoding& coding, cons
 
 std::vector<Vec3> EncodeCompactPositions(RangeEncoder* enc, const CompactPositionCoding& coding,
                                          const std::vector<Face>& faces, const std::vector<Vec3>& positions) {
-  if (coding.tangential_quarters == kGridTangentialQuarters) return EncodeOnGrid(enc, coding.grid, faces, positions);
+  if (coding.tangential_quarters == kGridTangentialQuarters) return EncodeOnGrid(enc, coding, faces, positions);
   return EncodeInFrames(enc, coding, faces, positions);
 }
 
 bool DecodeCompactPositions(RangeDecoder* dec, const CompactPositionCoding& coding, const std::vector<Face>& faces,
                             uint32_t num_vertices, std::vector<Vec3>* positions) {
   if (coding.tangential_quarters == kGridTangentialQuarters) {
-    return DecodeOnGrid(dec, coding.grid, faces, num_vertices, positions);
+    return DecodeOnGrid(dec, coding, faces, num_vertices, positions);
   }
   return DecodeInFrames(dec, coding, faces, num_vertices, positions);
 }
