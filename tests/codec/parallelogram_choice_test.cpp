@@ -1,5 +1,6 @@
-// The compact chunk's parallelogram choice (compact_positions.h, stream 1.7): exact
-// agreement of encoder and decoder, fewer bytes on a creased extrusion, no choice
+// The compact chunk's parallelogram choice and greedy order (compact_positions.h,
+// stream 1.7): exact agreement of encoder and decoder, fewer bytes on a creased
+// extrusion and on a cylinder's rims, no choice
 // outside the positions-after axis grid, decode safety, and a stream that uses it
 // says so (version 1.7, flag) while the others keep their versions.
 #include <gtest/gtest.h>
@@ -75,6 +76,42 @@ TEST(ParallelogramChoice, TheSameGridPointsInFewerBytesOnACreasedExtrusion) {
     EXPECT_EQ((*both)[0].decoded.positions, (*both)[1].decoded.positions);  // a choice of prediction only
     EXPECT_LT((*both)[1].bytes.size(), 0.7 * static_cast<double>((*both)[0].bytes.size())) << depth << " bits";
   }
+}
+
+// A closed cylinder of two rings: every side triangle is long and thin, and the
+// traversal reaches the rims through the caps' fans.
+Mesh MakeTwoRingCylinder(int around = 96) {
+  Mesh mesh;
+  for (int k = 0; k < 2; ++k) {
+    for (int i = 0; i < around; ++i) {
+      const double a = 2.0 * M_PI * i / around;
+      mesh.positions.emplace_back(std::cos(a), std::sin(a), 3.0 * k);
+    }
+  }
+  const uint32_t n = static_cast<uint32_t>(around);
+  const uint32_t bottom = 2 * n;
+  mesh.positions.emplace_back(0.0, 0.0, 0.0);
+  mesh.positions.emplace_back(0.0, 0.0, 3.0);
+  for (uint32_t i = 0; i < n; ++i) {
+    const uint32_t j = (i + 1) % n;
+    mesh.faces.push_back({i, j, n + j});
+    mesh.faces.push_back({i, n + j, n + i});
+    mesh.faces.push_back({bottom, j, i});
+    mesh.faces.push_back({bottom + 1, n + i, n + j});
+  }
+  return mesh;
+}
+
+TEST(ParallelogramChoice, TheGreedyOrderPredictsACylindersRimsAlongItsSide) {
+  const Mesh cylinder = MakeTwoRingCylinder();
+  auto both = EncodeCompactBaseVariants(cylinder, {{9.0, kGridTangentialQuarters, false},
+                                                   {9.0, kGridTangentialQuarters, true}});
+  ASSERT_TRUE(both.ok()) << both.status().ToString();
+  EXPECT_EQ((*both)[0].decoded.positions, (*both)[1].decoded.positions);
+  EXPECT_LT((*both)[1].bytes.size(), 0.5 * static_cast<double>((*both)[0].bytes.size()));
+  auto dec = DecodeCompactBase((*both)[1].bytes.data(), (*both)[1].bytes.size(), 1u << 20, "test");
+  ASSERT_TRUE(dec.ok()) << dec.status().ToString();
+  EXPECT_EQ(dec->positions, (*both)[1].decoded.positions);
 }
 
 TEST(ParallelogramChoice, OnlyThePositionsAfterAxisGridHasIt) {

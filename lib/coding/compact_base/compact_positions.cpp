@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
+#include <set>
 #include <unordered_map>
 
 namespace eqmesh {
@@ -61,14 +63,34 @@ class Neighbourhood {
   // y, z) when x, y and the corner z across x->y all precede v.
   template <class Neighbour, class Parallelogram>
   void Visit(uint32_t v, Neighbour&& neighbour, Parallelogram&& parallelogram) const {
+    VisitCoded(v, [v](uint32_t x) { return x < v; }, neighbour, parallelogram);
+  }
+
+  // The same with `coded(x)` for "x precedes v" (the greedy order below).
+  template <class Coded, class Neighbour, class Parallelogram>
+  void VisitCoded(uint32_t v, Coded&& coded, Neighbour&& neighbour, Parallelogram&& parallelogram) const {
     for (uint32_t i = first_[v]; i < first_[v + 1]; ++i) {
       const Face& f = faces_[incident_[i]];
       const int k = f[0] == v ? 0 : f[1] == v ? 1 : 2;
       const uint32_t x = f[(k + 1) % 3], y = f[(k + 2) % 3];
-      if (x < v) neighbour(x);
-      if (x >= v || y >= v) continue;
+      if (coded(x)) neighbour(x);
+      if (!coded(x) || !coded(y)) continue;
       const auto it = opposite_.find(Key(y, x));
-      if (it != opposite_.end() && it->second < v) parallelogram(x, y, it->second);
+      if (it != opposite_.end() && coded(it->second)) parallelogram(x, y, it->second);
+    }
+  }
+
+  // Every vertex whose prediction coding v can change: v's neighbours and the
+  // corners across the edges of v's faces.
+  template <class Touch>
+  void ForEachAffected(uint32_t v, Touch&& touch) const {
+    for (uint32_t i = first_[v]; i < first_[v + 1]; ++i) {
+      const Face& f = faces_[incident_[i]];
+      for (int k = 0; k < 3; ++k) {
+        touch(f[k]);
+        const auto it = opposite_.find(Key(f[(k + 1) % 3], f[k]));
+        if (it != opposite_.end()) touch(it->second);
+      }
     }
   }
 
@@ -91,6 +113,54 @@ class Neighbourhood {
   std::vector<uint32_t> incident_;                   // face ids, grouped by vertex
   std::unordered_map<uint64_t, uint32_t> opposite_;  // directed edge a->b -> third corner; looked up only
   std::vector<uint64_t> l1_;                         // L1 norm of each coded vertex's residual
+};
+
+// The order the grid-with-choice mode codes positions in (compact_positions.h): next
+// the vertex with the most complete parallelograms (up to kOrderParallelogramCap),
+// then the most coded neighbours, then the lowest index; both sides derive it from
+// the decoded faces.
+constexpr int kOrderParallelogramCap = 3;
+constexpr int kOrderNeighbourCap = 63;
+constexpr uint32_t kNoVertex = 0xffffffffu;
+
+class GreedyOrder {
+ public:
+  GreedyOrder(const Neighbourhood& hood, uint32_t n) : hood_(hood), coded_(n, 0), key_(n, 0) {
+    for (uint32_t v = 0; v < n; ++v) queue_.insert({0, v});
+  }
+
+  bool Coded(uint32_t v) const { return coded_[v] != 0; }
+  uint32_t Previous() const { return previous_; }  // kNoVertex before the first
+  uint32_t Next() const { return queue_.begin()->second; }
+
+  void MarkCoded(uint32_t v) {
+    queue_.erase({-key_[v], v});
+    coded_[v] = 1;
+    previous_ = v;
+    hood_.ForEachAffected(v, [&](uint32_t w) {
+      if (!coded_[w]) Update(w);
+    });
+  }
+
+ private:
+  void Update(uint32_t w) {
+    int parallelograms = 0, neighbours = 0;
+    hood_.VisitCoded(
+        w, [&](uint32_t x) { return coded_[x] != 0; }, [&](uint32_t) { ++neighbours; },
+        [&](uint32_t, uint32_t, uint32_t) { ++parallelograms; });
+    const int64_t key = int64_t{std::min(parallelograms, kOrderParallelogramCap)} * (kOrderNeighbourCap + 1) +
+                        std::min(neighbours, kOrderNeighbourCap);
+    if (key == key_[w]) return;
+    queue_.erase({-key_[w], w});
+    key_[w] = key;
+    queue_.insert({-key, w});
+  }
+
+  const Neighbourhood& hood_;
+  std::vector<uint8_t> coded_;
+  std::vector<int64_t> key_;
+  std::set<std::pair<int64_t, uint32_t>> queue_;  // (-key, vertex): the next one first
+  uint32_t previous_ = kNoVertex;
 };
 
 // ---- Axis grid: integer indices, exact. ----
@@ -134,16 +204,17 @@ double EstimatedResidualBits(const std::array<int64_t, 3>& r) {
 // estimated bits beyond log2(count) for its index.
 constexpr double kChoiceMarginBits = 2.0;
 
-// The prediction of v: the mean of its parallelograms (with_singles: and each one
-// alone), else of its neighbours, else the previous vertex.
+// The prediction of v: the mean of its parallelograms (with an order, the greedy one,
+// also each one alone), else of its neighbours, else the previous vertex.
 GridPrediction PredictIndex(const Neighbourhood& hood, const CompactGrid& grid, uint32_t v, const Quanta& quanta,
-                            PositionModels* models, bool with_singles) {
+                            PositionModels* models, const GreedyOrder* order) {
   std::array<int64_t, 3> parallelograms{}, neighbours{};
   std::vector<std::array<int32_t, 3>> singles;
+  const bool with_singles = order != nullptr;
   int num_parallelograms = 0, num_neighbours = 0;
   uint64_t activity = 0;
-  hood.Visit(
-      v,
+  hood.VisitCoded(
+      v, [&](uint32_t x) { return order ? order->Coded(x) : x < v; },
       [&](uint32_t x) {
         for (size_t c = 0; c < 3; ++c) neighbours[c] += quanta[x][c];
         ++num_neighbours;
@@ -162,7 +233,8 @@ GridPrediction PredictIndex(const Neighbourhood& hood, const CompactGrid& grid, 
   GridPrediction p;
   if (num_parallelograms >= 2) p.singles = std::move(singles);
   p.models = models->Of(kAxis, kind, num_neighbours > 0 ? activity / static_cast<uint64_t>(num_neighbours) : 0);
-  p.value = kind == kSeed         ? (v > 0 ? quanta[v - 1] : SeedPrediction(grid, {}))
+  const uint32_t previous = order ? order->Previous() : (v > 0 ? v - 1 : kNoVertex);
+  p.value = kind == kSeed         ? (previous != kNoVertex ? quanta[previous] : SeedPrediction(grid, {}))
             : kind == kNeighbours ? MeanIndex(grid, neighbours, num_neighbours)
                                   : MeanIndex(grid, parallelograms, num_parallelograms);
   return p;
@@ -343,9 +415,12 @@ std::vector<Vec3> EncodeOnGrid(RangeEncoder* enc, const CompactPositionCoding& c
   Neighbourhood hood(n, faces);
   PositionModels models;
   ChoiceModels choices;
+  std::optional<GreedyOrder> order;
+  if (coding.parallelogram_choice) order.emplace(hood, n);
   std::vector<Vec3> decoded(n);
-  for (uint32_t v = 0; v < n; ++v) {
-    GridPrediction p = PredictIndex(hood, grid, v, quanta, &models, coding.parallelogram_choice);
+  for (uint32_t i = 0; i < n; ++i) {
+    const uint32_t v = order ? order->Next() : i;
+    GridPrediction p = PredictIndex(hood, grid, v, quanta, &models, order ? &*order : nullptr);
     if (!p.singles.empty()) p.value = ChooseParallelogram(enc, &choices, p, quanta[v]);
     std::array<int64_t, 3> r{};
     for (size_t c = 0; c < 3; ++c) {
@@ -353,6 +428,7 @@ std::vector<Vec3> EncodeOnGrid(RangeEncoder* enc, const CompactPositionCoding& c
       EncodeResidual(enc, p.models, r[c]);
     }
     hood.Record(v, r);
+    if (order) order->MarkCoded(v);
     decoded[v] = grid.Position(quanta[v]);
   }
   return decoded;
@@ -365,8 +441,11 @@ bool DecodeOnGrid(RangeDecoder* dec, const CompactPositionCoding& coding, const 
   Neighbourhood hood(n, faces);
   PositionModels models;
   ChoiceModels choices;
-  for (uint32_t v = 0; v < n && dec->ok(); ++v) {
-    GridPrediction p = PredictIndex(hood, grid, v, quanta, &models, coding.parallelogram_choice);
+  std::optional<GreedyOrder> order;
+  if (coding.parallelogram_choice) order.emplace(hood, n);
+  for (uint32_t i = 0; i < n && dec->ok(); ++i) {
+    const uint32_t v = order ? order->Next() : i;
+    GridPrediction p = PredictIndex(hood, grid, v, quanta, &models, order ? &*order : nullptr);
     if (!p.singles.empty()) p.value = ReadParallelogramChoice(dec, &choices, p);
     std::array<int64_t, 3> r{};
     for (size_t c = 0; c < 3; ++c) {
@@ -376,6 +455,7 @@ bool DecodeOnGrid(RangeDecoder* dec, const CompactPositionCoding& coding, const 
       quanta[v][c] = static_cast<int32_t>(value);
     }
     hood.Record(v, r);
+    if (order) order->MarkCoded(v);
   }
   if (!dec->ok()) return false;
   positions->resize(n);

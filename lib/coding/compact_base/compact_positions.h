@@ -29,6 +29,12 @@
 // its side with a wrong one from its cap (1,474 B against 716-823 B for Draco at 61-74
 // dB). The encoder takes a single parallelogram where its residual is estimated to
 // cost more than two bits less than the mean's, after the choice's own cost.
+// In this mode positions are coded in a greedy order both sides derive from the
+// faces (most complete parallelograms first, then most coded neighbours, then the
+// lowest index) instead of the traversal's: the traversal reaches a cylinder's rim
+// through its cap's fan, whose only parallelogram points at the cap's centre, and
+// the greedy order reaches it along the side strip (a two-ring, 194-vertex cylinder
+// at 9 bits: 449 -> 217 B; Draco 349 B at that depth).
 #pragma once
 
 #include <cstdint>
