@@ -627,9 +627,9 @@ void RefineLevel(const SemiRegularHierarchy& hierarchy, int j, const InputSurfac
   *stats = LevelStats();
   std::vector<Vec3> level = *positions;
   const std::vector<uint32_t> level_faces = *on_faces;
-  const std::vector<CreasePlace> level_creases = creases ? *creases : std::vector<CreasePlace>();
-  remesh_internal::LevelRefiner refiner(hierarchy, j, surface, parts, &level, level_faces, params,
-                                        creases ? &level_creases : nullptr);
+  // The refiner reads *creases (level j) while it runs; the odd vertices' places
+  // are appended only after.
+  remesh_internal::LevelRefiner refiner(hierarchy, j, surface, parts, &level, level_faces, params, creases);
   refiner.Run(stencils, positions, on_faces, kinds, stats);
   if (creases) refiner.AppendCreasePlaces(creases);
   *params = refiner.TakeParams();

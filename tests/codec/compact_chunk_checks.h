@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -24,6 +25,22 @@ inline void ExpectErrorOrValidCompactMesh(const std::vector<uint8_t>& bytes, uin
     for (const uint32_t v : f) EXPECT_LT(v, dec->positions.size());
   }
   for (const Vec3& p : dec->positions) EXPECT_TRUE(p.allFinite());
+}
+
+// Every prefix of `good` (in steps of 3 bytes) and every one-byte corruption of it
+// (a pseudo-random xor per position, from `seed`) decodes safely.
+inline void ExpectDamagedCompactChunksSafe(const std::vector<uint8_t>& good, uint32_t seed) {
+  for (size_t n = 0; n < good.size(); n += 3) {
+    ExpectErrorOrValidCompactMesh(std::vector<uint8_t>(good.begin(), good.begin() + static_cast<std::ptrdiff_t>(n)),
+                                  1u << 20);
+  }
+  uint32_t state = seed;
+  for (size_t at = 0; at < good.size(); ++at) {
+    std::vector<uint8_t> bad = good;
+    state = state * 1664525u + 1013904223u;
+    bad[at] = static_cast<uint8_t>(bad[at] ^ (1u + (state >> 24) % 255u));
+    ExpectErrorOrValidCompactMesh(bad, 1u << 20);
+  }
 }
 
 }  // namespace eqmesh::testing
