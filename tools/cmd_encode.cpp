@@ -390,7 +390,8 @@ int RunEncode(int argc, char** argv) {
                               : choice.remeshed_bytes > 0 ? "the input coded as is (" +
                                                                 std::to_string(choice.remeshed_bytes) +
                                                                 " bytes as a normal mesh)"
-                                                          : "the input coded as is (too small to remesh)";
+                              : choice.nothing_remeshed   ? "the input coded as is (too small to remesh)"
+                                                          : "the input coded as is (no normal-mesh stream met the target)";
     std::printf("%s: %zu bytes, %.3f bits per input vertex (%zu vertices), %s", a.out_path.c_str(),
                 report.total_bytes, report.bpv, options.input_vertices, shape.c_str());
     if (report.psnr_measured) std::printf(", PSNR %.2f dB", report.psnr_db);

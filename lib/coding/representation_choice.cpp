@@ -152,6 +152,7 @@ StatusOr<std::vector<uint8_t>> EncodeChoosingRepresentation(const SemiRegularMes
   RepresentationReport local;
   RepresentationReport& c = choice ? *choice : local;
   c = RepresentationReport();
+  c.nothing_remeshed = NothingRemeshed(remeshed);
   EncodeReport remeshed_report;
   LevelCountReport remeshed_levels;
   auto stream = EncodeChoosingLevels(remeshed, options, &remeshed_report, &remeshed_levels);
@@ -194,6 +195,9 @@ StatusOr<std::vector<uint8_t>> EncodeChoosingRepresentation(const SemiRegularMes
       if (!stream.ok() && OutOfReach(stream.status()) && !as_is.stream.ok() && OutOfReach(as_is.stream.status())) {
         return BothOutOfReach(stream.status(), as_is.stream.status());
       }
+      // With no normal mesh, the input as is was the only candidate: its failure
+      // (a target out of reach) is the one to report.
+      if (c.nothing_remeshed && !as_is.stream.ok()) return as_is.stream.status();
     }
   }
   if (!stream.ok()) return stream.status();

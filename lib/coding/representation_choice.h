@@ -43,6 +43,7 @@ struct RepresentationReport {
   bool as_is = false;            // the stream returned codes the input as is
   size_t remeshed_bytes = 0;     // 0 when that stream failed
   double remeshed_psnr_db = 0;
+  bool nothing_remeshed = false;  // every component too small: no normal mesh exists
   size_t as_is_bytes = 0;        // 0 when not tried or failed
   double as_is_psnr_db = 0;
 };

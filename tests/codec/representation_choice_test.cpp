@@ -226,7 +226,20 @@ TEST(RepresentationChoice, MeshTooSmallToRemeshTravelsAsIs) {
     auto decoded = Decode(stream->data(), stream->size());
     ASSERT_TRUE(decoded.ok()) << decoded.status().ToString();
     EXPECT_EQ(decoded->faces.size(), tetrahedron.faces.size());
+    EXPECT_TRUE(choice.nothing_remeshed);
   }
+  // A target beyond the input as is: out of reach, saying what as is reached (not
+  // that nothing was remeshed, which is no reason once as is may travel).
+  // (Corners off every grid: the integer corners above are coded exactly.)
+  Mesh skewed = tetrahedron;
+  for (Vec3& p : skewed.positions) p += Vec3(std::sqrt(2.0), std::sqrt(3.0), std::sqrt(5.0)) * (0.1 + p.sum() / 7.0);
+  auto skewed_remesh = Remesh(skewed, RemeshOptions{}, &remesh_report);
+  ASSERT_TRUE(skewed_remesh.ok()) << skewed_remesh.status().ToString();
+  EncodeOptions too_high = MeasuredAgainst(skewed);
+  too_high.target_psnr = 300.0;
+  auto unreachable = EncodeChoosingRepresentation(*skewed_remesh, too_high, allowed, nullptr, nullptr, nullptr);
+  ASSERT_FALSE(unreachable.ok());
+  EXPECT_EQ(unreachable.status().code(), StatusCode::kTargetOutOfReach) << unreachable.status().ToString();
   // Not allowed: the encoder says why it cannot code it.
   EncodeOptions options;
   options.original = &tetrahedron;
