@@ -33,6 +33,8 @@
 //    al. keep the hit closest to the prediction.
 //  * Boundary edges are never pierced: the new vertex is the parametric midpoint
 //    on the input's boundary polyline (VertexKind::kBoundary).
+//  * Edges along an input crease chain are not pierced either: the new vertex is
+//    the chain's arc-length midpoint between the edge's ends (crease_curves.h).
 #pragma once
 
 #include <cstddef>
