@@ -176,7 +176,9 @@ Mesh MakeGridBox(double sx, double sy, double sz, int cells_per_unit) {
   // Each side: an origin and two edge vectors ordered so a x b points outward.
   const Vec3 o(0, 0, 0), x(sx, 0, 0), y(0, sy, 0), z(0, 0, sz);
   const std::array<std::array<Vec3, 3>, 6> sides{{{o, y, x}, {z, x, y}, {o, z, y}, {x, y, z}, {o, x, z}, {y, z, x}}};
-  for (const auto& [origin, a, b] : sides) {
+  for (const std::array<Vec3, 3>& side : sides) {
+    // Named copies, not structured bindings: C++17 lambdas cannot capture those.
+    const Vec3 origin = side[0], a = side[1], b = side[2];
     const int na = std::max(1, static_cast<int>(std::lround(a.norm() * cells_per_unit)));
     const int nb = std::max(1, static_cast<int>(std::lround(b.norm() * cells_per_unit)));
     const auto at = [&](int i, int j) { return vertex(origin + a * (double(i) / na) + b * (double(j) / nb)); };
