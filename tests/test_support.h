@@ -19,6 +19,9 @@ Mesh MakeIcosphere(int subdivisions, double radius = 1.0);
 Mesh MakeTorus(int n, int m, double major_radius = 1.0, double minor_radius = 0.35);
 // Flat disc in the z = 0 plane with `rings` rings: a mesh with one boundary loop.
 Mesh MakeDisc(int rings, double radius = 1.0);
+// A closed cylinder of radius r and height h around z, `around` vertices per
+// ring and `rings` rings, capped by fans: two creases that are closed loops.
+Mesh MakeCappedCylinder(double r, double h, int around, int rings);
 
 // Every face of `mesh` with three corners of its own, as flat-shaded exports
 // write them (each face its own component).

@@ -78,32 +78,10 @@ TEST(ParallelogramChoice, TheSameGridPointsInFewerBytesOnACreasedExtrusion) {
   }
 }
 
-// A closed cylinder of two rings: every side triangle is long and thin, and the
-// traversal reaches the rims through the caps' fans.
-Mesh MakeTwoRingCylinder(int around = 96) {
-  Mesh mesh;
-  for (int k = 0; k < 2; ++k) {
-    for (int i = 0; i < around; ++i) {
-      const double a = 2.0 * M_PI * i / around;
-      mesh.positions.emplace_back(std::cos(a), std::sin(a), 3.0 * k);
-    }
-  }
-  const uint32_t n = static_cast<uint32_t>(around);
-  const uint32_t bottom = 2 * n;
-  mesh.positions.emplace_back(0.0, 0.0, 0.0);
-  mesh.positions.emplace_back(0.0, 0.0, 3.0);
-  for (uint32_t i = 0; i < n; ++i) {
-    const uint32_t j = (i + 1) % n;
-    mesh.faces.push_back({i, j, n + j});
-    mesh.faces.push_back({i, n + j, n + i});
-    mesh.faces.push_back({bottom, j, i});
-    mesh.faces.push_back({bottom + 1, n + i, n + j});
-  }
-  return mesh;
-}
-
 TEST(ParallelogramChoice, TheGreedyOrderPredictsACylindersRimsAlongItsSide) {
-  const Mesh cylinder = MakeTwoRingCylinder();
+  // Two rings: every side triangle is long and thin, and the traversal reaches
+  // the rims through the caps' fans.
+  const Mesh cylinder = testing::MakeCappedCylinder(1.0, 3.0, 96, 2);
   auto both = EncodeCompactBaseVariants(cylinder, {{9.0, kGridTangentialQuarters, false},
                                                    {9.0, kGridTangentialQuarters, true}});
   ASSERT_TRUE(both.ok()) << both.status().ToString();

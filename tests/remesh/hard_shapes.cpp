@@ -193,27 +193,4 @@ Mesh MakeGridBox(double sx, double sy, double sz, int cells_per_unit) {
   return mesh;
 }
 
-Mesh MakeCappedCylinder(double r, double h, int around, int rings) {
-  Mesh mesh;
-  for (int k = 0; k < rings; ++k) {
-    for (int i = 0; i < around; ++i) {
-      const double a = 2.0 * M_PI * i / around;
-      mesh.positions.emplace_back(r * std::cos(a), r * std::sin(a), h * k / (rings - 1));
-    }
-  }
-  const uint32_t bottom = static_cast<uint32_t>(mesh.positions.size());
-  mesh.positions.emplace_back(0.0, 0.0, 0.0);
-  mesh.positions.emplace_back(0.0, 0.0, h);
-  const auto at = [&](int k, int i) { return static_cast<uint32_t>(k * around + (i % around)); };
-  for (int i = 0; i < around; ++i) {
-    mesh.faces.push_back({bottom, at(0, i + 1), at(0, i)});
-    mesh.faces.push_back({bottom + 1, at(rings - 1, i), at(rings - 1, i + 1)});
-    for (int k = 0; k + 1 < rings; ++k) {
-      mesh.faces.push_back({at(k, i), at(k, i + 1), at(k + 1, i + 1)});
-      mesh.faces.push_back({at(k, i), at(k + 1, i + 1), at(k + 1, i)});
-    }
-  }
-  return mesh;
-}
-
 }  // namespace eqmesh::testing

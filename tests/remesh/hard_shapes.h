@@ -24,10 +24,6 @@ Mesh MakePretzel();
 // 90-degree creases along its twelve edges, corners of three creases.
 Mesh MakeGridBox(double sx, double sy, double sz, int cells_per_unit);
 
-// A closed cylinder of radius r and height h around z, `around` vertices per
-// ring and `rings` rings, capped by fans: two creases that are closed loops.
-Mesh MakeCappedCylinder(double r, double h, int around, int rings);
-
 // Genus of a closed, connected, manifold mesh from its Euler characteristic.
 int ClosedGenus(const Mesh& mesh);
 
