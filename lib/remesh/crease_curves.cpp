@@ -10,7 +10,8 @@
 namespace eqmesh {
 namespace {
 
-constexpr uint32_t kNone = std::numeric_limits<uint32_t>::max();
+// No sharp edge left to walk.
+constexpr uint32_t kNoEdge = std::numeric_limits<uint32_t>::max();
 
 struct SharpEdge {
   uint32_t a, b, face;
@@ -62,14 +63,14 @@ CreaseCurves::CreaseCurves(const Mesh& mesh, double min_turn_degrees) {
     chain.vertices.push_back(v);
     chain.arc.push_back(0.0);
     uint32_t at = v, edge = first;
-    while (edge != kNone && !walked[edge]) {
+    while (edge != kNoEdge && !walked[edge]) {
       walked[edge] = 1;
       const uint32_t next = sharp[edge].a == at ? sharp[edge].b : sharp[edge].a;
       chain.arc.push_back(chain.arc.back() + (mesh.positions[next] - mesh.positions[at]).norm());
       chain.vertices.push_back(next);
       chain.faces.push_back(sharp[edge].face);
       at = next;
-      edge = kNone;
+      edge = kNoEdge;
       if (degree(at) != 2 || at == v) break;
       for (uint32_t n = offsets[at]; n < offsets[at + 1]; ++n) {
         if (!walked[items[n]]) edge = items[n];
@@ -108,7 +109,7 @@ std::vector<CreaseSite> CreaseCurves::SitesOf(uint32_t v) const {
 }
 
 std::vector<CreaseSite> CreaseCurves::SitesOfPlace(const CreasePlace& p) const {
-  if (p.input_vertex != kNone) return SitesOf(p.input_vertex);
+  if (p.input_vertex != kNoInputVertex) return SitesOf(p.input_vertex);
   if (p.site.chain != kNoCreaseChain) return {p.site};
   return {};
 }

@@ -5,10 +5,11 @@
 // refinement stays on them; Guskov et al.'s normal meshes (2000) pierce every
 // new vertex along the normal. Here the creases are found (sharp input edges)
 // rather than tagged, and the base domain is not constrained by them (a crease
-// vertex may be collapsed across the crease); a remesh edge is refined onto a crease only where both its ends lie
-// on the same crease chain and the chain between them is nearly as short as the
-// edge: there the remesh follows the crease, and the new vertex is placed at
-// the chain's arc-length midpoint between them. Piercing along the butterfly
+// vertex may be collapsed across the crease); a remesh edge is refined onto a
+// crease only where both its ends lie on the same crease chain and the chain
+// between them is nearly as short as the edge: there the remesh follows the
+// crease, and the new vertex is placed at the chain's arc-length midpoint
+// between them. Piercing along the butterfly
 // normal lands beside the crease (the prediction smooths it) and each level cuts
 // the crease again: a box remeshed on its 8 corners measured 79.9 dB at level 7.
 // The vertex is then non-normal (it costs three coefficients, not one); crease
@@ -25,6 +26,7 @@
 namespace eqmesh {
 
 inline constexpr uint32_t kNoCreaseChain = std::numeric_limits<uint32_t>::max();
+inline constexpr uint32_t kNoInputVertex = std::numeric_limits<uint32_t>::max();
 
 // A point on a crease chain, by arc length from the chain's first vertex.
 struct CreaseSite {
@@ -36,7 +38,7 @@ struct CreaseSite {
 // its sites are the chains through it, several at a corner) or a single site
 // (a vertex placed on a crease), or nowhere.
 struct CreasePlace {
-  uint32_t input_vertex = std::numeric_limits<uint32_t>::max();
+  uint32_t input_vertex = kNoInputVertex;
   CreaseSite site;
 };
 
@@ -68,9 +70,11 @@ class CreaseCurves {
   // The crease point for a remesh edge whose ends lie at `a` and `b` (positions
   // pa, pb): the arc-length midpoint of the shortest stretch of one chain
   // joining them, if that stretch is at most kMaxArcToChord times the edge's
-  // length. Writes an input face on that stretch's segment to *on_face.
+  // length.
   std::optional<CreaseSite> SplitSite(const CreasePlace& a, const Vec3& pa, const CreasePlace& b,
                                       const Vec3& pb) const;
+  // The point of `mesh` at `site`; writes the input face of its chain segment to
+  // *on_face.
   Vec3 PositionAt(const CreaseSite& site, const Mesh& mesh, uint32_t* on_face) const;
 
  private:
