@@ -24,6 +24,7 @@ set(EQMESH_STREAM_DECODER_SOURCES
   coding/compact_base/compact_base_decoder.cpp
   coding/compact_base/compact_positions.cpp
   coding/stream_header.cpp
+  coding/crease_chunk.cpp
   coding/level_decoder.cpp
   coding/level_synthesis.cpp
   coding/zerotree_decoder.cpp

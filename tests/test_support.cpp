@@ -56,6 +56,19 @@ Mesh MakeTorus(int n, int m, double major_radius, double minor_radius) {
   return mesh;
 }
 
+CubeWithEdges MakeCube() {
+  CubeWithEdges c;
+  for (int i = 0; i < 8; ++i) c.mesh.positions.emplace_back(i & 1, (i >> 1) & 1, (i >> 2) & 1);
+  // Each side (a, b, c, d) counter-clockwise from outside: triangles (a, b, c), (a, c, d).
+  const uint32_t sides[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (const auto& s : sides) {
+    c.mesh.faces.push_back({s[0], s[1], s[2]});
+    c.mesh.faces.push_back({s[0], s[2], s[3]});
+    for (int i = 0; i < 4; ++i) c.edges.push_back({s[i], s[(i + 1) % 4]});
+  }
+  return c;
+}
+
 Mesh MakeCappedCylinder(double r, double h, int around, int rings) {
   Mesh mesh;
   for (int k = 0; k < rings; ++k) {

@@ -2,7 +2,10 @@
 // location of the shared meshes.
 #pragma once
 
+#include <array>
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include "mesh/mesh.h"
 
@@ -22,6 +25,14 @@ Mesh MakeDisc(int rings, double radius = 1.0);
 // A closed cylinder of radius r and height h around z, `around` vertices per
 // ring and `rings` rings, capped by fans: two creases that are closed loops.
 Mesh MakeCappedCylinder(double r, double h, int around, int rings);
+
+// A unit cube, two triangles per side (outward), and its twelve edges (the
+// sides' borders, not their diagonals): the shape crease tags are made for.
+struct CubeWithEdges {
+  Mesh mesh;
+  std::vector<std::array<uint32_t, 2>> edges;
+};
+CubeWithEdges MakeCube();
 
 // Every face of `mesh` with three corners of its own, as flat-shaded exports
 // write them (each face its own component).

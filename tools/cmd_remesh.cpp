@@ -115,6 +115,7 @@ int RunRemesh(int argc, char** argv) {
   j["input_faces"] = mesh->faces.size();
   j["welded_vertices"] = report.welded_vertices;
   j["base_vertices"] = report.base_vertices;
+  j["base_crease_edges"] = report.base_crease_edges;
   j["levels"] = report.levels;
   j["output_vertices"] = report.output_vertices;
   j["output_faces"] = finest.faces.size();

@@ -82,6 +82,7 @@ nlohmann::json ToJson(const Report& r) {
   j["header_bytes"] = s.header_size;
   j["base_bytes"] = s.base_size;
   j["kept_bytes"] = s.kept_size;
+  j["crease_bytes"] = s.crease_size;
   j["level_offsets"] = s.level_offsets;
   j["level_sizes"] = s.level_sizes;
   j["prefix_sizes"] = s.prefix_size;
@@ -112,6 +113,7 @@ void PrintTable(const Report& r) {
   std::string flags = s.has_compact_base ? "compact base" : "Draco base";
   if (s.has_tangential_context) flags += ", tangential context";
   if (s.has_kept_exactly) flags += s.has_compact_kept ? ", compact kept-exactly chunk" : ", Draco kept-exactly chunk";
+  if (s.has_creases) flags += ", crease chunk (" + num(s.crease_size) + " bytes)";
   row("chunks", flags);
   std::snprintf(buf, sizeof buf, "%.6g (tangential factor %.6g), quantum %.6g", s.lambda, s.tangential_factor,
                 s.quantum);

@@ -161,5 +161,14 @@ int main(int argc, char** argv) {
     all.Add(t);
   }
   all.Print("all levels");
+  if (srm->hierarchy.HasCreases()) {
+    SemiRegularMesh plain = *srm;
+    (void)plain.hierarchy.SetBaseCreases({});
+    const WaveletCoefficients p = ForwardTransform(plain.hierarchy, plain.positions, WaveletKind::kUnlifted);
+    Tally without;
+    for (int j = 0; j < srm->hierarchy.levels(); ++j) without.Add(TallyLevel(plain, p.details[j], j, sharp, threshold));
+    std::printf("%zu tagged base edges; without the crease rules: ", srm->hierarchy.BaseCreases().size());
+    without.Print("all levels");
+  }
   return 0;
 }

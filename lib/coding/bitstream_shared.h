@@ -19,6 +19,7 @@
 //   base_size        varint   bytes of the base-mesh chunk (> 0)
 //   kept_size        varint   only with kHasKeptExactly: bytes of the kept chunk (> 0)
 //   atlas_size       varint   only with kHasAtlas: bytes of the atlas chunk (> 0)
+//   crease_size      varint   only with kCreaseEdges: bytes of the crease chunk (> 0)
 //   level_size[J]    varint   bytes of level chunk j = 0..J-1 (refinement j -> j+1)
 //   -- end of header; chunks follow back to back, no padding, nothing after --
 //   base chunk       the base connectivity and the level-0 scaling values
@@ -30,6 +31,8 @@
 //   atlas chunk      (since 1.4) the texture atlas: a square cell per base face, or
 //                    per pair of base faces across an edge, from which every level's
 //                    TEXCOORD_0 follows (coding/atlas/atlas_layout.h).
+//   crease chunk     (since 1.8) the base edges tagged as creases, which every
+//                    level's butterfly stencils follow (coding/crease_chunk.h).
 //   level chunks     opaque to the container; for kCoderEq one EqLevel chunk each
 //                    (lib/coding/eq), decoded against the hierarchy level layout,
 //                    with context-modelled tangential parts when kTangentialContext;
@@ -47,22 +50,24 @@ namespace eqmesh::bitstream {
 
 constexpr uint8_t kMagic[4] = {'E', 'Q', 'M', 'S'};
 constexpr uint8_t kVersionMajor = 1;
-constexpr uint8_t kVersionMinor = 7;  // 1.1: coder 1 (zerotree); 1.2: kCompactBase;
+constexpr uint8_t kVersionMinor = 8;  // 1.1: coder 1 (zerotree); 1.2: kCompactBase;
                                       // 1.3: kTangentialContext; 1.4: kHasAtlas;
                                       // 1.5: kCompactKept; 1.6: kCompactPositionsAfter;
-                                      // 1.7: the parallelogram choice (compact_positions.h)
+                                      // 1.7: the parallelogram choice (compact_positions.h);
+                                      // 1.8: kCreaseEdges (crease_chunk.h)
 // A stream carries the lowest minor version that has every feature it uses, so an
 // optional feature leaves the streams without it byte-identical: 1.3 without an
 // atlas or a compact kept chunk, 1.4 with an atlas, 1.5 with a compact kept chunk,
 // 1.6 with compact chunks in the positions-after layout (the encoder picks the
 // layout per stream, with the base's depth: the older one wins on small bases), 1.7
 // (flag kParallelogramChoice) with a compact base chunk whose mode byte is
-// kGridChoiceModeByte.
+// kGridChoiceModeByte, 1.8 with a crease chunk.
 constexpr uint8_t kVersionMinorWithoutAtlas = 3;
 constexpr uint8_t kVersionMinorAtlas = 4;
 constexpr uint8_t kVersionMinorCompactKept = 5;
 constexpr uint8_t kVersionMinorPositionsAfter = 6;
 constexpr uint8_t kVersionMinorParallelogramChoice = 7;
+constexpr uint8_t kVersionMinorCreaseEdges = 8;
 
 // Wavelet transform the level chunks are expressed in. Pinned values.
 enum class TransformId : uint8_t {
@@ -87,9 +92,10 @@ enum HeaderFlag : uint8_t {
   kCompactKept = 1u << 4,        // the kept chunk is a compact chunk, not Draco (1.5)
   kCompactPositionsAfter = 1u << 5,  // compact chunks code positions after connectivity (1.6)
   kParallelogramChoice = 1u << 6,    // the compact base chunk's axis grid has the parallelogram choice (1.7)
+  kCreaseEdges = 1u << 7,            // a crease chunk tags base edges as creases (1.8; levels > 0)
 };
 constexpr uint8_t kKnownFlags = kHasKeptExactly | kCompactBase | kTangentialContext | kHasAtlas | kCompactKept |
-                                kCompactPositionsAfter | kParallelogramChoice;
+                                kCompactPositionsAfter | kParallelogramChoice | kCreaseEdges;
 
 // lambda and the tangential factor travel as log2 codes in 1/kLogCodeScale steps;
 // the encoder codes with the value the decoder will rebuild from the code.

@@ -7,6 +7,7 @@
 #include "coding/atlas/atlas_layout.h"
 #include "coding/base_mesh_decoder.h"
 #include "coding/compact_base/compact_base_decoder.h"
+#include "coding/crease_chunk.h"
 #include "coding/level_decoder.h"
 #include "coding/level_synthesis.h"
 #include "coding/stream_header.h"
@@ -39,7 +40,10 @@ StreamInfo MakeStreamInfo(const StreamHeader& h, size_t header_size) {
   s.has_atlas = h.has_atlas();
   s.atlas_offset = s.kept_offset + s.kept_size;
   s.atlas_size = h.atlas_size;
-  uint64_t offset = s.atlas_offset + s.atlas_size;
+  s.has_creases = h.has_creases();
+  s.crease_offset = s.atlas_offset + s.atlas_size;
+  s.crease_size = h.crease_size;
+  uint64_t offset = s.crease_offset + s.crease_size;
   s.prefix_size.push_back(offset);
   for (const uint64_t size : h.level_sizes) {
     s.level_offsets.push_back(offset);
@@ -124,6 +128,17 @@ Status DecodeLevels(const uint8_t* data, const StreamInfo& s, const StreamHeader
 
 }  // namespace
 
+// The crease chunk's tags on the base (a stream whose base is decoded has it:
+// it comes before the level chunks).
+Status DecodeCreases(const uint8_t* data, const StreamInfo& s, SemiRegularHierarchy* hierarchy) {
+  if (!s.has_creases) return Status::Ok();
+  EQMESH_ASSIGN_OR_RETURN(std::vector<Edge> tags,
+                          ReadCreaseChunk(data + s.crease_offset, static_cast<size_t>(s.crease_size), *hierarchy));
+  const Status set = hierarchy->SetBaseCreases(std::move(tags));
+  if (!set.ok()) return CorruptStream("eqm crease chunk: " + set.message());
+  return Status::Ok();
+}
+
 StatusOr<StreamInfo> ReadStreamInfo(const uint8_t* data, size_t size) {
   size_t header_size = 0;
   EQMESH_ASSIGN_OR_RETURN(StreamHeader h, ReadStreamHeader(data, size, &header_size));
@@ -153,6 +168,7 @@ StatusOr<SemiRegularMesh> DecodeSemiRegular(const uint8_t* data, size_t size,
                                                std::move(base.faces), 0, bitstream::kMaxFinestFaces);
   if (!hierarchy.ok()) return hierarchy.status().WithContext("eqm base mesh chunk");
   mesh.hierarchy = std::move(hierarchy).value();
+  EQMESH_RETURN_IF_ERROR(DecodeCreases(data, s, &mesh.hierarchy));
   mesh.positions = std::move(base.positions);
   if (h.coder == bitstream::CoderId::kZerotree) {
     EQMESH_RETURN_IF_ERROR(DecodeZerotreeLevels(data, size, s, h, levels, &mesh));

@@ -66,6 +66,8 @@ struct StreamInfo {
   uint64_t base_offset = 0, base_size = 0;
   uint64_t kept_offset = 0, kept_size = 0;  // size 0 when absent
   uint64_t atlas_offset = 0, atlas_size = 0;  // size 0 when absent
+  bool has_creases = false;                   // a crease chunk tags base edges (1.8)
+  uint64_t crease_offset = 0, crease_size = 0;  // size 0 when absent
   std::vector<uint64_t> level_offsets;      // chunk of refinement j -> j+1
   std::vector<uint64_t> level_sizes;
   uint64_t total_size = 0;                  // bytes of the complete stream

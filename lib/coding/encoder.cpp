@@ -21,6 +21,7 @@
 #include "coding/base_mesh_encoder.h"
 #include "coding/compact_base/compact_base_encoder.h"
 #include "coding/closed_loop.h"
+#include "coding/crease_chunk.h"
 #include "coding/decoder.h"
 #include "coding/level_encoder.h"
 #include "coding/rate_control.h"
@@ -179,18 +180,35 @@ StatusOr<Prepared> Prepare(const SemiRegularMesh& mesh, bitstream::TransformId t
   return p;
 }
 
+// The crease chunk of a stream whose levels follow tagged base edges; empty
+// when there are none (or no levels to follow them).
+std::vector<uint8_t> CreaseChunkFor(const SemiRegularHierarchy& hierarchy) {
+  if (hierarchy.levels() == 0 || !hierarchy.HasCreases()) return {};
+  return WriteCreaseChunk(hierarchy);
+}
+
+// Sets the header's crease flag, size and version for `creases` (CreaseChunkFor).
+void DeclareCreases(const std::vector<uint8_t>& creases, StreamHeader* header) {
+  if (creases.empty()) return;
+  header->flags |= bitstream::kCreaseEdges;
+  header->crease_size = creases.size();
+  header->version_minor = std::max(header->version_minor, bitstream::kVersionMinorCreaseEdges);
+}
+
 std::vector<uint8_t> Assemble(StreamHeader header, const std::vector<uint8_t>& base,
-                              const std::vector<uint8_t>& kept,
+                              const std::vector<uint8_t>& kept, const std::vector<uint8_t>& creases,
                               const std::vector<std::vector<uint8_t>>& levels,
                               EncodeReport* report) {
   header.base_size = base.size();
   header.kept_size = kept.size();
   if (!kept.empty()) header.flags |= bitstream::kHasKeptExactly;
+  DeclareCreases(creases, &header);
   for (const auto& chunk : levels) header.level_sizes.push_back(chunk.size());
   std::vector<uint8_t> out = WriteStreamHeader(header);
   report->header_bytes = out.size();
   out.insert(out.end(), base.begin(), base.end());
   out.insert(out.end(), kept.begin(), kept.end());
+  out.insert(out.end(), creases.begin(), creases.end());
   for (const auto& chunk : levels) {
     report->level_bytes.push_back(chunk.size());
     out.insert(out.end(), chunk.begin(), chunk.end());
@@ -248,8 +266,8 @@ const MeshChunkEncoding& ChooseBase(const Prepared& prep, const StreamHeader& he
 }
 
 Pass FinishPass(StreamHeader header, const Prepared& prep, const MeshChunkEncoding& base,
-                const std::vector<std::vector<uint8_t>>& chunks, const BaseRdReport& base_report,
-                const EncodeOptions& options) {
+                const SemiRegularHierarchy& hierarchy, const std::vector<std::vector<uint8_t>>& chunks,
+                const BaseRdReport& base_report, const EncodeOptions& options) {
   Pass pass;
   if (base.compact) header.flags |= bitstream::kCompactBase;
   if ((base.compact || prep.kept_compact) && StreamLayout(prep, base) == CompactLayout::kPositionsAfter) {
@@ -260,7 +278,7 @@ Pass FinishPass(StreamHeader header, const Prepared& prep, const MeshChunkEncodi
     header.flags |= bitstream::kParallelogramChoice;
     header.version_minor = std::max(header.version_minor, bitstream::kVersionMinorParallelogramChoice);
   }
-  pass.bytes = Assemble(header, base.bytes, KeptBytes(prep, base), chunks, &pass.report);
+  pass.bytes = Assemble(header, base.bytes, KeptBytes(prep, base), CreaseChunkFor(hierarchy), chunks, &pass.report);
   pass.report.lambda = header.lambda();
   pass.report.tangential_factor = header.tangential_factor();
   pass.report.lambda_code = static_cast<int>(header.lambda_code);
@@ -299,20 +317,21 @@ StatusOr<Pass> EncodeAtCode(const Prepared& prep, const EncodeOptions& options, 
   EQMESH_RETURN_IF_ERROR(
       EncodeLevelsClosedLoop(*target->steps, target->truth, base.decoded.positions, coder, options.progress, &chunks)
           .status());
-  return FinishPass(header, prep, base, chunks, base_report, options);
+  return FinishPass(header, prep, base, h, chunks, base_report, options);
 }
 
 // Zerotree payload bytes that keep the whole stream within total_budget (never
 // below the smallest payload: a budget under the base chunk gives the smallest
 // stream there is).
 uint64_t ZerotreePayloadBudget(StreamHeader header, size_t base_bytes, size_t kept_bytes,
-                               uint64_t total_budget) {
+                               const std::vector<uint8_t>& creases, uint64_t total_budget) {
   header.base_size = base_bytes;
   header.kept_size = kept_bytes;
   if (kept_bytes > 0) header.flags |= bitstream::kHasKeptExactly;
+  DeclareCreases(creases, &header);
   header.level_sizes.assign(static_cast<size_t>(header.levels), 0);
   header.level_sizes[0] = total_budget;  // an upper bound on the real size's varint
-  const uint64_t fixed = WriteStreamHeader(header).size() + base_bytes + kept_bytes;
+  const uint64_t fixed = WriteStreamHeader(header).size() + base_bytes + kept_bytes + creases.size();
   const uint64_t least = ZerotreeMinBytes();
   return total_budget > fixed + least ? total_budget - fixed : least;
 }
@@ -338,7 +357,8 @@ StatusOr<Pass> EncodeZerotreeAtCode(const Prepared& prep, const EncodeOptions& o
     zo.quantum = static_cast<double>(header.quantum);
     zo.tangential_factor = header.tangential_factor();
     if (total_budget > 0) {
-      zo.byte_budget = ZerotreePayloadBudget(header, base.bytes.size(), KeptBytes(prep, base).size(), total_budget);
+      zo.byte_budget = ZerotreePayloadBudget(header, base.bytes.size(), KeptBytes(prep, base).size(),
+                                             CreaseChunkFor(h), total_budget);
     } else {
       zo.min_plane = ZerotreePlaneForLambda(header.lambda());
     }
@@ -346,7 +366,7 @@ StatusOr<Pass> EncodeZerotreeAtCode(const Prepared& prep, const EncodeOptions& o
     EQMESH_ASSIGN_OR_RETURN(chunks[0], EncodeZerotree(h, coeffs, zo, &zr));
     *last_plane = zr.last_plane;
   }
-  return FinishPass(header, prep, base, chunks, base_report, options);
+  return FinishPass(header, prep, base, h, chunks, base_report, options);
 }
 
 // A byte budget cut exactly (embedded stream): a first pass at the start lambda

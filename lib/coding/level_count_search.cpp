@@ -168,6 +168,7 @@ StatusOr<SemiRegularMesh> TruncateLevels(const SemiRegularMesh& mesh, int levels
   }
   SemiRegularMesh out;
   EQMESH_ASSIGN_OR_RETURN(out.hierarchy, SemiRegularHierarchy::Build(h.NumVertices(0), h.BaseFaces(), levels));
+  EQMESH_RETURN_IF_ERROR(out.hierarchy.SetBaseCreases(h.BaseCreases()));
   const size_t n = h.NumVertices(levels);
   if (mesh.positions.size() < n) return InvalidArgument("semi-regular mesh has too few positions");
   out.positions.assign(mesh.positions.begin(), mesh.positions.begin() + static_cast<std::ptrdiff_t>(n));

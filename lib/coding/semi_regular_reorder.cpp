@@ -31,6 +31,16 @@ Status MapOddVertices(const SemiRegularHierarchy& old_h, const SemiRegularHierar
   return Status::Ok();
 }
 
+std::vector<Edge> RenumberedCreases(const std::vector<Edge>& creases, const std::vector<uint32_t>& new_to_old_base) {
+  if (creases.empty()) return {};
+  std::vector<uint32_t> old_to_new(new_to_old_base.size());
+  for (uint32_t i = 0; i < new_to_old_base.size(); ++i) old_to_new[new_to_old_base[i]] = i;
+  std::vector<Edge> out;
+  out.reserve(creases.size());
+  for (const Edge& e : creases) out.push_back({old_to_new[e[0]], old_to_new[e[1]]});
+  return out;
+}
+
 }  // namespace
 
 StatusOr<SemiRegularMesh> RenumberToBase(const SemiRegularMesh& mesh,
@@ -45,6 +55,7 @@ StatusOr<SemiRegularMesh> RenumberToBase(const SemiRegularMesh& mesh,
   EQMESH_ASSIGN_OR_RETURN(SemiRegularHierarchy new_h,
                           SemiRegularHierarchy::Build(old_h.NumVertices(0),
                                                       std::move(new_base_faces), levels));
+  EQMESH_RETURN_IF_ERROR(new_h.SetBaseCreases(RenumberedCreases(old_h.BaseCreases(), new_to_old_base)));
   std::vector<uint32_t> new_to_old = new_to_old_base;
   new_to_old.reserve(new_h.NumVertices(levels));
   for (int j = 0; j < levels; ++j) {

@@ -35,6 +35,7 @@ std::vector<uint8_t> WriteStreamHeader(const StreamHeader& h) {
   w.PutVarint(h.base_size);
   if (h.has_kept()) w.PutVarint(h.kept_size);
   if (h.has_atlas()) w.PutVarint(h.atlas_size);
+  if (h.has_creases()) w.PutVarint(h.crease_size);
   for (const uint64_t s : h.level_sizes) w.PutVarint(s);
   return w.Take();
 }
@@ -90,6 +91,7 @@ Status ReadCodingSetup(ByteReader* r, StreamHeader* h) {
   if ((h->flags & bitstream::kParallelogramChoice) != 0 && !(h->has_compact_base() && h->has_positions_after())) {
     return r->Corrupt("parallelogram-choice flag on a stream without a positions-after compact base");
   }
+  if (h->has_creases() && levels == 0) return r->Corrupt("crease flag on a stream without levels");
   if (h->has_tangential_context() && coder != static_cast<uint8_t>(bitstream::CoderId::kEq)) {
     return r->Corrupt("tangential-context flag on a stream whose coder is not EQ");
   }
@@ -129,6 +131,10 @@ Status ReadChunkTable(ByteReader* r, StreamHeader* h) {
   if (h->has_atlas()) {
     EQMESH_RETURN_IF_ERROR(r->ReadBoundedVarint(bitstream::kMaxChunkBytes, "atlas chunk size", &h->atlas_size));
     if (h->atlas_size == 0) return r->Corrupt("empty atlas chunk");
+  }
+  if (h->has_creases()) {
+    EQMESH_RETURN_IF_ERROR(r->ReadBoundedVarint(bitstream::kMaxChunkBytes, "crease chunk size", &h->crease_size));
+    if (h->crease_size == 0) return r->Corrupt("empty crease chunk");
   }
   h->level_sizes.resize(static_cast<size_t>(h->levels));
   for (uint64_t& s : h->level_sizes) {

@@ -24,6 +24,7 @@ struct StreamHeader {
   uint64_t base_size = 0;
   uint64_t kept_size = 0;  // 0 unless flags has kHasKeptExactly
   uint64_t atlas_size = 0; // 0 unless flags has kHasAtlas
+  uint64_t crease_size = 0;  // 0 unless flags has kCreaseEdges
   std::vector<uint64_t> level_sizes;
 
   bool has_kept() const { return (flags & bitstream::kHasKeptExactly) != 0; }
@@ -32,6 +33,7 @@ struct StreamHeader {
   bool has_atlas() const { return (flags & bitstream::kHasAtlas) != 0; }
   bool has_compact_kept() const { return (flags & bitstream::kCompactKept) != 0; }
   bool has_positions_after() const { return (flags & bitstream::kCompactPositionsAfter) != 0; }
+  bool has_creases() const { return (flags & bitstream::kCreaseEdges) != 0; }
   double lambda() const;
   double tangential_factor() const;
 };

@@ -27,6 +27,7 @@ StatusOr<const SemiRegularHierarchy*> FullHierarchy(const SemiRegularMesh& mesh,
                                           bitstream::kMaxFinestFaces);
   if (!full.ok()) return full.status().WithContext("eqm base mesh chunk");
   *storage = std::move(full).value();
+  EQMESH_RETURN_IF_ERROR(storage->SetBaseCreases(mesh.hierarchy.BaseCreases()));
   return storage;
 }
 

@@ -13,7 +13,7 @@ namespace {
 
 std::vector<uint64_t> ChunkLengths(const StreamInfo& info) {
   std::vector<uint64_t> lengths;
-  lengths.push_back(info.header_size + info.base_size + info.kept_size + info.atlas_size);
+  lengths.push_back(info.header_size + info.base_size + info.kept_size + info.atlas_size + info.crease_size);
   lengths.insert(lengths.end(), info.level_sizes.begin(), info.level_sizes.end());
   return lengths;
 }

@@ -122,6 +122,61 @@ Status SemiRegularHierarchy::Refine(uint64_t max_finest_faces) {
   vertex_counts_.push_back(static_cast<uint32_t>(count));
   faces_.push_back(std::move(fine));
   odd_edges_.push_back(std::move(odd));
+  crease_odd_.push_back(TagCreaseOdds(levels() - 1));
+  return Status::Ok();
+}
+
+namespace {
+
+Edge Undirected(const Edge& e) { return {std::min(e[0], e[1]), std::max(e[0], e[1])}; }
+
+}  // namespace
+
+std::vector<uint8_t> SemiRegularHierarchy::TagCreaseOdds(int j) const {
+  if (base_creases_.empty()) return {};
+  const std::vector<Edge>& odd = odd_edges_[j];
+  std::vector<uint8_t> tags(odd.size(), 0);
+  if (j == 0) {
+    for (size_t k = 0; k < odd.size(); ++k) {
+      tags[k] = std::binary_search(base_creases_.begin(), base_creases_.end(), Undirected(odd[k]));
+    }
+    return tags;
+  }
+  // A level-j edge is half of a tagged level-(j-1) edge when one end is that
+  // edge's odd vertex and the other one of its ends.
+  const uint32_t first_new = vertex_counts_[j - 1];
+  const auto half_of_tagged = [&](uint32_t m, uint32_t other) {
+    if (m < first_new) return false;
+    const uint32_t parent = m - first_new;
+    if (!crease_odd_[j - 1][parent]) return false;
+    const Edge& e = odd_edges_[j - 1][parent];
+    return other == e[0] || other == e[1];
+  };
+  for (size_t k = 0; k < odd.size(); ++k) {
+    tags[k] = half_of_tagged(odd[k][0], odd[k][1]) || half_of_tagged(odd[k][1], odd[k][0]);
+  }
+  return tags;
+}
+
+Status SemiRegularHierarchy::SetBaseCreases(std::vector<Edge> edges) {
+  if (faces_.empty()) return InvalidArgument("crease edges on a hierarchy that was never built");
+  std::vector<Edge> base_edges;
+  base_edges.reserve(faces_[0].size() * 3);
+  for (const Face& f : faces_[0]) {
+    for (int c = 0; c < 3; ++c) base_edges.push_back(Undirected({f[c], f[(c + 1) % 3]}));
+  }
+  std::sort(base_edges.begin(), base_edges.end());
+  for (Edge& e : edges) {
+    e = Undirected(e);
+    if (!std::binary_search(base_edges.begin(), base_edges.end(), e)) {
+      return InvalidMesh("crease edge (" + std::to_string(e[0]) + ", " + std::to_string(e[1]) +
+                         ") is not an edge of the base mesh");
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  base_creases_ = std::move(edges);
+  for (int j = 0; j < levels(); ++j) crease_odd_[j] = TagCreaseOdds(j);
   return Status::Ok();
 }
 

@@ -15,6 +15,10 @@
 //    children 4f+0 = (a, m_ab, m_ca), 4f+1 = (m_ab, b, m_bc),
 //    4f+2 = (m_ca, m_bc, c), 4f+3 = (m_ab, m_bc, m_ca). Orientation is kept and
 //    the faces of base triangle t at level j are [t*4^j, (t+1)*4^j).
+//  * Crease edges: a set of base edges may be tagged (SetBaseCreases); the two
+//    halves (a, m) and (m, b) of a tagged level-j edge (a, b) with odd vertex m
+//    are tagged at level j+1, and no other edge is. The butterfly predicts
+//    along tagged edges as along a boundary (wavelet/butterfly.h).
 #pragma once
 
 #include <array>
@@ -60,6 +64,15 @@ class SemiRegularHierarchy {
   // Level at which vertex v first appears (0 for base vertices).
   int VertexLevel(uint32_t v) const;
 
+  // Tags the given base edges (either orientation) as creases, for every level
+  // built and to come. InvalidMesh when one is not an edge of a base face.
+  Status SetBaseCreases(std::vector<Edge> edges);
+  // The tagged base edges, each (smaller, larger), sorted; empty: none.
+  const std::vector<Edge>& BaseCreases() const { return base_creases_; }
+  bool HasCreases() const { return !base_creases_.empty(); }
+  // Whether odd vertex NumVertices(j) + k refines a tagged level-j edge.
+  bool IsCreaseOdd(int j, uint32_t k) const { return !crease_odd_[j].empty() && crease_odd_[j][k] != 0; }
+
   // Face and odd-edge counts a hierarchy would have, without building it.
   static uint64_t FinestFaceCount(uint64_t base_faces, int levels);
 
@@ -67,6 +80,10 @@ class SemiRegularHierarchy {
   std::vector<uint32_t> vertex_counts_;          // size levels+1
   std::vector<std::vector<Face>> faces_;         // size levels+1
   std::vector<std::vector<Edge>> odd_edges_;     // size levels
+  std::vector<Edge> base_creases_;
+  std::vector<std::vector<uint8_t>> crease_odd_;  // size levels; per odd vertex, empty without creases
+
+  std::vector<uint8_t> TagCreaseOdds(int j) const;
 };
 
 // Kind of each vertex of a remeshed semi-regular mesh.

@@ -12,7 +12,9 @@ namespace eqmesh {
 namespace {
 
 constexpr char kMagic[4] = {'E', 'Q', 'S', 'R'};
+// Version 2 adds the crease edges; a mesh without them is written as version 1.
 constexpr uint8_t kVersion = 1;
+constexpr uint8_t kVersionCreases = 2;
 
 bool HostIsLittleEndian() {
   const uint16_t probe = 1;
@@ -105,6 +107,21 @@ Status ReadKinds(Reader* reader, uint32_t count, const std::string& path, std::v
   return Status::Ok();
 }
 
+// Crease edges are edges of the base, which bounds their count.
+Status ReadCreases(Reader* reader, const std::string& path, SemiRegularHierarchy* hierarchy) {
+  uint32_t count = 0;
+  EQMESH_RETURN_IF_ERROR(reader->Get(&count));
+  if (count > 3 * hierarchy->BaseFaces().size()) return ParseError(path + ": more crease edges than base edges");
+  std::vector<Edge> edges(count);
+  for (Edge& e : edges) {
+    EQMESH_RETURN_IF_ERROR(reader->Get(&e[0]));
+    EQMESH_RETURN_IF_ERROR(reader->Get(&e[1]));
+  }
+  const Status set = hierarchy->SetBaseCreases(std::move(edges));
+  if (!set.ok()) return ParseError(path + ": " + set.message());
+  return Status::Ok();
+}
+
 }  // namespace
 
 Status WriteSemiRegular(const SemiRegularMesh& mesh, const std::string& path) {
@@ -115,7 +132,7 @@ Status WriteSemiRegular(const SemiRegularMesh& mesh, const std::string& path) {
   }
   Writer w;
   for (char c : kMagic) w.Put(c);
-  w.Put(kVersion);
+  w.Put(h.HasCreases() ? kVersionCreases : kVersion);
   w.Put(static_cast<uint8_t>(h.levels()));
   w.Put(uint16_t{0});
   w.Put(h.NumVertices(0));
@@ -131,6 +148,13 @@ Status WriteSemiRegular(const SemiRegularMesh& mesh, const std::string& path) {
   w.Put(static_cast<uint8_t>(has_kinds));
   if (has_kinds) {
     for (VertexKind k : mesh.kinds) w.Put(static_cast<uint8_t>(k));
+  }
+  if (h.HasCreases()) {
+    w.Put(static_cast<uint32_t>(h.BaseCreases().size()));
+    for (const Edge& e : h.BaseCreases()) {
+      w.Put(e[0]);
+      w.Put(e[1]);
+    }
   }
   w.PutMesh(mesh.kept_exactly.positions, mesh.kept_exactly.faces);
   return WriteFileAtomically(path, reinterpret_cast<const uint8_t*>(w.bytes.data()), w.bytes.size());
@@ -150,7 +174,7 @@ StatusOr<SemiRegularMesh> ReadSemiRegular(const std::string& path) {
   EQMESH_RETURN_IF_ERROR(r.Get(&version));
   EQMESH_RETURN_IF_ERROR(r.Get(&levels));
   EQMESH_RETURN_IF_ERROR(r.Get(&reserved));
-  if (version != kVersion) return UnsupportedVersion(path + ": semi-regular file version " + std::to_string(version));
+  if (version != kVersion && version != kVersionCreases) return UnsupportedVersion(path + ": semi-regular file version " + std::to_string(version));
   uint32_t base_vertices = 0, base_faces = 0;
   EQMESH_RETURN_IF_ERROR(r.Get(&base_vertices));
   EQMESH_RETURN_IF_ERROR(r.Get(&base_faces));
@@ -168,6 +192,7 @@ StatusOr<SemiRegularMesh> ReadSemiRegular(const std::string& path) {
   }
   EQMESH_RETURN_IF_ERROR(r.GetPositions(vertex_count, &mesh.positions));
   EQMESH_RETURN_IF_ERROR(ReadKinds(&r, vertex_count, path, &mesh.kinds));
+  if (version == kVersionCreases) EQMESH_RETURN_IF_ERROR(ReadCreases(&r, path, &mesh.hierarchy));
   uint32_t kept_vertices = 0, kept_faces = 0;
   EQMESH_RETURN_IF_ERROR(r.Get(&kept_vertices));
   EQMESH_RETURN_IF_ERROR(r.Get(&kept_faces));

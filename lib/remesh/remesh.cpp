@@ -333,6 +333,22 @@ struct RefineContext {
   DensityTarget density;
 };
 
+// Base edges whose ends lie on one crease chain, along a stretch of it nearly
+// as short as the edge (CreaseCurves::SplitSite): tagged, so every level
+// refines them onto the chain and the butterfly predicts along them.
+std::vector<Edge> BaseEdgesAlongCreases(const InputSurface& surface, const SemiRegularHierarchy& h,
+                                        const std::vector<Vec3>& positions, const std::vector<CreasePlace>& places) {
+  std::vector<Edge> out;  // interior edges twice: SetBaseCreases keeps one
+  if (surface.creases.empty()) return out;
+  for (const Face& f : h.BaseFaces()) {
+    for (int c = 0; c < 3; ++c) {
+      const uint32_t a = f[c], b = f[(c + 1) % 3];
+      if (surface.creases.SplitSite(places[a], positions[a], places[b], positions[b])) out.push_back({a, b});
+    }
+  }
+  return out;
+}
+
 StatusOr<Refinement> RefineAllLevels(const RefineContext& c) {
   Refinement r;
   const uint32_t nb = static_cast<uint32_t>(c.base.base_to_input.size());
@@ -349,6 +365,7 @@ StatusOr<Refinement> RefineAllLevels(const RefineContext& c) {
   std::vector<ParamPoint> params = c.base.params;
   // One level at a time (Refine gives what Build would), so no level is built twice.
   EQMESH_ASSIGN_OR_RETURN(r.hierarchy, SemiRegularHierarchy::Build(nb, c.base.faces, 0));
+  EQMESH_RETURN_IF_ERROR(r.hierarchy.SetBaseCreases(BaseEdgesAlongCreases(c.surface, r.hierarchy, r.positions, r.creases)));
   double previous_psnr = -std::numeric_limits<double>::infinity();
   while (true) {
     const uint64_t faces = r.hierarchy.Faces(r.levels).size();
@@ -578,6 +595,7 @@ StatusOr<SemiRegularMesh> Remesh(const Mesh& input, const RemeshOptions& options
                                options, AutoDensityTarget(prep.surface, prep.input_vertices)};
   EQMESH_ASSIGN_OR_RETURN(Refinement best, RemeshWithFewerFolds(context, &report));
   report.base_vertices = best.hierarchy.NumVertices(0);
+  report.base_crease_edges = best.hierarchy.BaseCreases().size();
   CountNormalVertices(best.hierarchy, best.kinds, &report);
   out.hierarchy = std::move(best.hierarchy);
   out.positions = std::move(best.positions);

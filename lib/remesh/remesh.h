@@ -51,6 +51,9 @@ struct RemeshReport {
   // repair's weld with RemeshOptions::repair).
   size_t welded_vertices = 0;
   size_t base_vertices = 0;
+  // Base edges tagged as creases (semi_regular.h): those along the input's
+  // crease chains, which every level follows.
+  size_t base_crease_edges = 0;
   size_t output_vertices = 0;  // finest level (plus kept_exactly vertices)
   int levels = 0;
   // Share of new (odd), non-boundary vertices that are normal, over all levels.

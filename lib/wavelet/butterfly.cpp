@@ -32,6 +32,17 @@
 //     Departure from Zorin's thesis (dedicated boundary-adjacent stencils we
 //     could not verify): this is OpenMesh's reflection rule; it keeps linear
 //     precision, which is all the codec needs, since encoder and decoder share it.
+//  Crease edges (only in hierarchies with tagged edges, semi_regular.h; a
+//  "crease vertex" has two or more tagged edges):
+//  C1 A tagged interior edge (where S1 and S2 do not apply): the 4-point rule along
+//     the crease, 9/16 (a + b) - 1/16 (p + n), p the other crease neighbour of
+//     a when a is an interior vertex with exactly two tagged edges, else the
+//     ghost 2a - b (and n likewise for b), so an end of the crease refines
+//     like an end of a straight curve.
+//  C2 In S3, a crease vertex is never extraordinary (as a boundary vertex).
+//  C3 In S4, a wing edge that is tagged gets the parallelogram ghost, as one
+//     with no unique twin: a stencil never reaches across a crease.
+//  Without tagged edges C1-C3 never apply.
 //  Identical indices are merged (summed) in first-seen order and exact zeros
 //  dropped; each stencil's weights sum to 1 up to rounding.
 //
@@ -53,6 +64,7 @@
 
 #include <Eigen/Geometry>
 
+#include "wavelet/crease_edges.h"
 #include "wavelet/level_adjacency.h"
 
 namespace eqmesh {
@@ -66,8 +78,8 @@ void AddMidpoint(uint32_t a, uint32_t b, StencilBuilder* s) {
   s->Add(b, 0.5);
 }
 
-bool IsExtraordinary(const LevelAdjacency& adj, uint32_t v) {
-  return adj.TypeOfVertex(v) == VertexType::kInterior && adj.Valence(v) != 6;
+bool IsExtraordinary(const LevelAdjacency& adj, const CreaseEdges& creases, uint32_t v) {
+  return adj.TypeOfVertex(v) == VertexType::kInterior && adj.Valence(v) != 6 && creases.Count(v) < 2;
 }
 
 bool IsButterflyEndpoint(const LevelAdjacency& adj, uint32_t v) {
@@ -90,10 +102,10 @@ void AddExtraordinary(const LevelAdjacency& adj, uint32_t v, uint32_t other, dou
 
 // Wing vertex across half-edge `wing` (an edge of a butterfly face), or its
 // parallelogram ghost when the wing edge has no unique twin.
-void AddWing(const LevelAdjacency& adj, uint32_t wing, StencilBuilder* s) {
+void AddWing(const LevelAdjacency& adj, const CreaseEdges& creases, uint32_t wing, StencilBuilder* s) {
   constexpr double kWing = -1.0 / 16.0;
   const uint32_t twin = adj.Twin(wing);
-  if (twin != kNone) {
+  if (twin != kNone && !creases.IsCrease(wing)) {
     s->Add(adj.Apex(twin), kWing);
     return;
   }
@@ -102,16 +114,16 @@ void AddWing(const LevelAdjacency& adj, uint32_t wing, StencilBuilder* s) {
   s->Add(adj.Apex(wing), -kWing);
 }
 
-void AddRegular(const LevelAdjacency& adj, uint32_t h, StencilBuilder* s) {
+void AddRegular(const LevelAdjacency& adj, const CreaseEdges& creases, uint32_t h, StencilBuilder* s) {
   const uint32_t t = adj.Twin(h);
   s->Add(adj.From(h), 0.5);
   s->Add(adj.To(h), 0.5);
   s->Add(adj.Apex(h), 0.125);
   s->Add(adj.Apex(t), 0.125);
-  AddWing(adj, LevelAdjacency::Next(h), s);
-  AddWing(adj, LevelAdjacency::Prev(h), s);
-  AddWing(adj, LevelAdjacency::Next(t), s);
-  AddWing(adj, LevelAdjacency::Prev(t), s);
+  AddWing(adj, creases, LevelAdjacency::Next(h), s);
+  AddWing(adj, creases, LevelAdjacency::Prev(h), s);
+  AddWing(adj, creases, LevelAdjacency::Next(t), s);
+  AddWing(adj, creases, LevelAdjacency::Prev(t), s);
 }
 
 void AddBoundary(const LevelAdjacency& adj, uint32_t a, uint32_t b, StencilBuilder* s) {
@@ -125,7 +137,26 @@ void AddBoundary(const LevelAdjacency& adj, uint32_t a, uint32_t b, StencilBuild
   s->Add(adj.BoundaryNext(b), -1.0 / 16.0);
 }
 
-void AddEdgeStencil(const LevelAdjacency& adj, uint32_t a, uint32_t b, StencilBuilder* s) {
+// Rule C1's outer point past crease end v of edge (v, other), weight -1/16.
+void AddCreaseOuter(const LevelAdjacency& adj, const CreaseEdges& creases, uint32_t v, uint32_t other,
+                    StencilBuilder* s) {
+  if (creases.Count(v) == 2 && adj.TypeOfVertex(v) == VertexType::kInterior) {
+    s->Add(creases.ContinuationPast(v, other), -1.0 / 16.0);
+    return;
+  }
+  s->Add(v, -2.0 / 16.0);
+  s->Add(other, 1.0 / 16.0);
+}
+
+void AddCrease(const LevelAdjacency& adj, const CreaseEdges& creases, uint32_t a, uint32_t b, StencilBuilder* s) {
+  s->Add(a, 9.0 / 16.0);
+  s->Add(b, 9.0 / 16.0);
+  AddCreaseOuter(adj, creases, a, b, s);
+  AddCreaseOuter(adj, creases, b, a, s);
+}
+
+void AddEdgeStencil(const LevelAdjacency& adj, const CreaseEdges& creases, uint32_t a, uint32_t b,
+                    StencilBuilder* s) {
   const uint32_t h = adj.FindHalfEdge(a, b);
   if (h == kNone || adj.TypeOfEdge(h) == LevelAdjacency::EdgeType::kNonManifold) {
     AddMidpoint(a, b, s);
@@ -139,7 +170,11 @@ void AddEdgeStencil(const LevelAdjacency& adj, uint32_t a, uint32_t b, StencilBu
     AddMidpoint(a, b, s);
     return;
   }
-  const bool ea = IsExtraordinary(adj, a), eb = IsExtraordinary(adj, b);
+  if (creases.IsCrease(h)) {
+    AddCrease(adj, creases, a, b, s);
+    return;
+  }
+  const bool ea = IsExtraordinary(adj, creases, a), eb = IsExtraordinary(adj, creases, b);
   if (ea && eb) {
     AddExtraordinary(adj, a, b, 0.5, s);
     AddExtraordinary(adj, b, a, 0.5, s);
@@ -148,7 +183,7 @@ void AddEdgeStencil(const LevelAdjacency& adj, uint32_t a, uint32_t b, StencilBu
   } else if (eb) {
     AddExtraordinary(adj, b, a, 1.0, s);
   } else {
-    AddRegular(adj, h, s);
+    AddRegular(adj, creases, h, s);
   }
 }
 
@@ -195,12 +230,17 @@ Vec3 StencilBuilder::Apply(const std::vector<Vec3>& values) const {
 }
 
 ButterflyPredictor::ButterflyPredictor(const SemiRegularHierarchy& hierarchy, int j)
-    : hierarchy_(hierarchy), j_(j), adjacency_(hierarchy.NumVertices(j), hierarchy.Faces(j)) {}
+    : hierarchy_(hierarchy),
+      j_(j),
+      adjacency_(hierarchy.NumVertices(j), hierarchy.Faces(j)),
+      creases_(std::make_unique<CreaseEdges>(hierarchy, j, adjacency_)) {}
+
+ButterflyPredictor::~ButterflyPredictor() = default;
 
 const StencilBuilder& ButterflyPredictor::Stencil(uint32_t k) const {
   const Edge& e = hierarchy_.OddEdge(j_, k);
   builder_.Clear();
-  AddEdgeStencil(adjacency_, e[0], e[1], &builder_);
+  AddEdgeStencil(adjacency_, *creases_, e[0], e[1], &builder_);
   return builder_;
 }
 

@@ -62,9 +62,12 @@ std::vector<double> ButterflyExtraordinaryWeights(uint32_t k);
 // memory than the level's positions take. Stencil(k) is row k of
 // BuildButterflyStencils, and its Apply gives what ApplyStencils gives. Holds a
 // reference to `hierarchy`; not thread-safe (one builder is reused).
+class CreaseEdges;
+
 class ButterflyPredictor {
  public:
   ButterflyPredictor(const SemiRegularHierarchy& hierarchy, int j);
+  ~ButterflyPredictor();
   const StencilBuilder& Stencil(uint32_t k) const;
   const SemiRegularHierarchy& hierarchy() const { return hierarchy_; }
   int level() const { return j_; }
@@ -74,11 +77,13 @@ class ButterflyPredictor {
   const SemiRegularHierarchy& hierarchy_;
   int j_;
   LevelAdjacency adjacency_;
+  std::unique_ptr<const CreaseEdges> creases_;  // of level j (crease_edges.h)
   mutable StencilBuilder builder_;
 };
 
 // Modified butterfly stencils for all odd vertices of refinement j -> j+1,
-// including extraordinary (valence != 6) and boundary rules. Connectivity only.
+// including extraordinary (valence != 6), boundary and crease rules (the
+// hierarchy's tagged edges). Connectivity only.
 StencilTable BuildButterflyStencils(const SemiRegularHierarchy& hierarchy, int j);
 
 // out[k] = stencil k applied to `positions` (positions.size() >= NumVertices(j)).

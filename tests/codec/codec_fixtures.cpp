@@ -41,6 +41,13 @@ SemiRegularMesh MakeBumpySphereWithKept(int levels) {
   return mesh;
 }
 
+SemiRegularMesh MakeBumpySphereWithCreases(int levels) {
+  SemiRegularMesh mesh = MakeBumpySphere(levels);
+  const Face& f = mesh.hierarchy.BaseFaces()[0];
+  EXPECT_TRUE(mesh.hierarchy.SetBaseCreases({{f[0], f[1]}, {f[1], f[2]}, {f[2], f[0]}}).ok());
+  return mesh;
+}
+
 EncodeOptions GoldenOptions() {
   EncodeOptions options;
   options.transform = bitstream::TransformId::kUnlifted;

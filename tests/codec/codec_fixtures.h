@@ -17,6 +17,10 @@ SemiRegularMesh MakeBumpySphere(int levels);
 // The same with a small tetrahedron in kept_exactly.
 SemiRegularMesh MakeBumpySphereWithKept(int levels);
 
+// The bumpy sphere with the edges of its first base face tagged as creases (a
+// closed chain of three: the stream carries a crease chunk).
+SemiRegularMesh MakeBumpySphereWithCreases(int levels);
+
 // The options of the golden stream (tests/codec/data/README.md).
 EncodeOptions GoldenOptions();
 std::string GoldenPath();

@@ -113,10 +113,26 @@ TEST(StreamHeader, RejectsBadMagicVersionCoderAndFlags) {
   EXPECT_EQ(with(7, 1), StatusCode::kCorruptStream);
   EXPECT_EQ(with(7, 9), StatusCode::kUnsupportedFeature);
   EXPECT_EQ(with(8, bitstream::kMaxLevels + 1), StatusCode::kCorruptStream);
-  EXPECT_EQ(with(9, 0x80), StatusCode::kCorruptStream);
+  // Every bit of the flags byte is defined since 1.8; bit 7 (kCreaseEdges) adds
+  // a crease chunk size to the header (below).
   for (size_t n = 0; n < good.size(); ++n) {
     EXPECT_FALSE(ReadStreamHeader(good.data(), n, &size).ok()) << n;
   }
+}
+
+TEST(StreamHeader, CreaseChunkSizeRoundTrips) {
+  StreamHeader h = SampleHeader();
+  h.flags |= bitstream::kCreaseEdges;
+  h.crease_size = 23;
+  const std::vector<uint8_t> b = WriteStreamHeader(h);
+  size_t size = 0;
+  auto read = ReadStreamHeader(b.data(), b.size(), &size);
+  ASSERT_TRUE(read.ok()) << read.status().ToString();
+  EXPECT_EQ(read->crease_size, 23u);
+  EXPECT_EQ(read->level_sizes, h.level_sizes);
+  h.crease_size = 0;
+  const std::vector<uint8_t> empty = WriteStreamHeader(h);
+  EXPECT_EQ(ReadStreamHeader(empty.data(), empty.size(), &size).status().code(), StatusCode::kCorruptStream);
 }
 
 TEST(StreamHeader, ZerotreeHasOneNonEmptyPayloadChunk) {

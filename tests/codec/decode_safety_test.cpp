@@ -32,13 +32,16 @@ struct Sample {
   std::vector<uint8_t> bytes;
 };
 
-std::vector<uint8_t> EncodeSample(CoderId coder, TransformId transform, bool kept, bool draco_base = false) {
+std::vector<uint8_t> EncodeSample(CoderId coder, TransformId transform, bool kept, bool draco_base = false,
+                                  bool creases = false) {
   EncodeOptions options;
   options.draco_base = draco_base;
   options.lambda = 0.05;
   options.coder = coder;
   options.transform = transform;
-  const SemiRegularMesh mesh = kept ? testing::MakeBumpySphereWithKept(2) : testing::MakeBumpySphere(2);
+  const SemiRegularMesh mesh = creases ? testing::MakeBumpySphereWithCreases(2)
+                               : kept  ? testing::MakeBumpySphereWithKept(2)
+                                       : testing::MakeBumpySphere(2);
   auto bytes = Encode(mesh, options);
   EXPECT_TRUE(bytes.ok()) << bytes.status().ToString();
   return bytes.ok() ? *bytes : std::vector<uint8_t>();
@@ -55,6 +58,8 @@ const std::vector<Sample>& Samples() {
     s.push_back({"zerotree_lifted_kept", EncodeSample(CoderId::kZerotree, TransformId::kLifted, true)});
     s.push_back({"uniform_lifted_kept", EncodeSample(CoderId::kUniform, TransformId::kLifted, true)});
     s.push_back({"eq_draco_base_kept", EncodeSample(CoderId::kEq, TransformId::kUnlifted, true, true)});
+    s.push_back({"eq_lifted_creases", EncodeSample(CoderId::kEq, TransformId::kLifted, false, false, true)});
+    s.push_back({"zerotree_unlifted_creases", EncodeSample(CoderId::kZerotree, TransformId::kUnlifted, false, false, true)});
     const std::string data = std::string(EQMESH_SOURCE_DIR) + "/tests/codec/data/";
     s.push_back({"golden_v1_3", testing::ReadBytes(data + "golden_v1_3.eqm")});
     s.push_back({"golden_v1_2", testing::ReadBytes(data + "golden_v1_2.eqm")});
@@ -270,13 +275,20 @@ std::vector<uint8_t> WithMoreLevels(const std::vector<uint8_t>& stream, int leve
 
 // The stream with one `fill` byte appended to chunk `chunk` (-1: the base chunk,
 // j >= 0: level chunk j) and the header rewritten to claim it.
+// WithPaddedChunk's names for the chunks before the levels (levels are 0, 1, ...).
+constexpr int kBaseChunk = -1;
+constexpr int kCreaseChunk = -2;
+
 std::vector<uint8_t> WithPaddedChunk(const std::vector<uint8_t>& stream, int chunk, uint8_t fill) {
   const StreamInfo info = ReadStreamInfo(stream.data(), stream.size()).value();
   size_t header_size = 0;
   StreamHeader h = ReadStreamHeader(stream.data(), stream.size(), &header_size).value();
   uint64_t end = info.base_offset + info.base_size;
-  if (chunk < 0) {
+  if (chunk == kBaseChunk) {
     ++h.base_size;
+  } else if (chunk == kCreaseChunk) {
+    end = info.crease_offset + info.crease_size;
+    ++h.crease_size;
   } else {
     const size_t j = static_cast<size_t>(chunk);
     end = info.level_offsets[j] + info.level_sizes[j];
@@ -300,7 +312,11 @@ TEST(DecodeSafety, ChunksWithBytesLeftOverAreRejected) {
     SCOPED_TRACE(sample.name);
     const StreamInfo info = ReadStreamInfo(sample.bytes.data(), sample.bytes.size()).value();
     ASSERT_TRUE(Decode(sample.bytes.data(), sample.bytes.size()).ok());
-    for (int chunk = info.has_compact_base ? -1 : 0; chunk < info.levels; ++chunk) {
+    std::vector<int> chunks;
+    if (info.has_creases) chunks.push_back(kCreaseChunk);
+    if (info.has_compact_base) chunks.push_back(kBaseChunk);
+    for (int j = 0; j < info.levels; ++j) chunks.push_back(j);
+    for (const int chunk : chunks) {
       for (const uint8_t fill : {uint8_t{0}, uint8_t{0xA5}}) {
         const std::vector<uint8_t> bad = WithPaddedChunk(sample.bytes, chunk, fill);
         auto mesh = Decode(bad.data(), bad.size());

@@ -41,7 +41,7 @@ EqmResult* Failure(const eqmesh::Status& status) {
 void SetLayout(const eqmesh::StreamInfo& s, EqmResult* r) {
   r->levels_in_stream = s.levels;
   r->coder = static_cast<int>(s.coder);
-  r->chunk_lengths.assign(1, static_cast<double>(s.header_size + s.base_size + s.kept_size + s.atlas_size));
+  r->chunk_lengths.assign(1, static_cast<double>(s.header_size + s.base_size + s.kept_size + s.atlas_size + s.crease_size));
   for (uint64_t size : s.level_sizes) r->chunk_lengths.push_back(static_cast<double>(size));
 }
 
