@@ -4,12 +4,12 @@
 // MAPS (Lee et al. 1998) keeps tagged feature lines on base edges, so their
 // refinement stays on them; Guskov et al.'s normal meshes (2000) pierce every
 // new vertex along the normal. Here the creases are found (sharp input edges)
-// rather than tagged, and the base domain is not constrained by them (a crease
-// vertex may be collapsed across the crease); a remesh edge is refined onto a
-// crease only where both its ends lie on the same crease chain and the chain
-// between them is nearly as short as the edge: there the remesh follows the
-// crease, and the new vertex is placed at the chain's arc-length midpoint
-// between them. Piercing along the butterfly
+// rather than given, and the base domain is not constrained by them (a crease
+// vertex may be collapsed across the crease); a base edge is tagged as a
+// crease (mesh/semi_regular.h) where both its ends lie on the same crease
+// chain and the chain between them is nearly as short as the edge, and a
+// tagged edge is refined onto the chain, at its arc-length midpoint between
+// the edge's ends, while they lie on it. Piercing along the butterfly
 // normal lands beside the crease (the prediction smooths it) and each level cuts
 // the crease again: a box remeshed on its 8 corners measured 79.9 dB at level 7.
 // The vertex is then non-normal (it costs three coefficients, not one); crease

@@ -301,10 +301,13 @@ EdgeChoice LevelRefiner::BoundaryPoint(uint32_t k) const {
   return out;
 }
 
-// An edge running along a crease chain: the chain's arc-length midpoint
-// between its ends (crease_curves.h), at the parametric midpoint of the edge.
+// A tagged edge (semi_regular.h: a base edge along a crease chain, or half of
+// one) whose ends still lie on the chain: the chain's arc-length midpoint
+// between them (crease_curves.h), at the parametric midpoint of the edge. Only
+// tagged edges, so the vertices placed on creases are those the butterfly
+// predicts along them.
 std::optional<EdgeChoice> LevelRefiner::CreasePoint(uint32_t k) const {
-  if (!creases_ || s_.creases.empty()) return std::nullopt;
+  if (!creases_ || s_.creases.empty() || !h_.IsCreaseOdd(j_, k)) return std::nullopt;
   const Edge& e = h_.OddEdge(j_, k);
   const std::optional<CreaseSite> site =
       s_.creases.SplitSite((*creases_)[e[0]], pos_[e[0]], (*creases_)[e[1]], pos_[e[1]]);

@@ -33,8 +33,10 @@
 //    al. keep the hit closest to the prediction.
 //  * Boundary edges are never pierced: the new vertex is the parametric midpoint
 //    on the input's boundary polyline (VertexKind::kBoundary).
-//  * Edges along an input crease chain are not pierced either: the new vertex is
-//    the chain's arc-length midpoint between the edge's ends (crease_curves.h).
+//  * Tagged edges (base edges along an input crease chain, and their halves)
+//    are not pierced either while their ends lie on the chain: the new vertex is
+//    the chain's arc-length midpoint between them (crease_curves.h), and the
+//    butterfly predicts it along the crease (wavelet/butterfly.cpp, rule C1).
 #pragma once
 
 #include <cstddef>

@@ -101,7 +101,7 @@ void AddExtraordinary(const LevelAdjacency& adj, uint32_t v, uint32_t other, dou
 }
 
 // Wing vertex across half-edge `wing` (an edge of a butterfly face), or its
-// parallelogram ghost when the wing edge has no unique twin.
+// parallelogram ghost when the wing edge has no unique twin or is tagged.
 void AddWing(const LevelAdjacency& adj, const CreaseEdges& creases, uint32_t wing, StencilBuilder* s) {
   constexpr double kWing = -1.0 / 16.0;
   const uint32_t twin = adj.Twin(wing);

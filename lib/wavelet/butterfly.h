@@ -68,6 +68,9 @@ class ButterflyPredictor {
  public:
   ButterflyPredictor(const SemiRegularHierarchy& hierarchy, int j);
   ~ButterflyPredictor();
+  // Its crease edges refer to its adjacency: it stays where it was built.
+  ButterflyPredictor(const ButterflyPredictor&) = delete;
+  ButterflyPredictor& operator=(const ButterflyPredictor&) = delete;
   const StencilBuilder& Stencil(uint32_t k) const;
   const SemiRegularHierarchy& hierarchy() const { return hierarchy_; }
   int level() const { return j_; }
