@@ -126,8 +126,6 @@ Status DecodeLevels(const uint8_t* data, const StreamInfo& s, const StreamHeader
   return Status::Ok();
 }
 
-}  // namespace
-
 // The crease chunk's tags on the base (a stream whose base is decoded has it:
 // it comes before the level chunks).
 Status DecodeCreases(const uint8_t* data, const StreamInfo& s, SemiRegularHierarchy* hierarchy) {
@@ -138,6 +136,8 @@ Status DecodeCreases(const uint8_t* data, const StreamInfo& s, SemiRegularHierar
   if (!set.ok()) return CorruptStream("eqm crease chunk: " + set.message());
   return Status::Ok();
 }
+
+}  // namespace
 
 StatusOr<StreamInfo> ReadStreamInfo(const uint8_t* data, size_t size) {
   size_t header_size = 0;
