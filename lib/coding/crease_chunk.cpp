@@ -35,18 +35,13 @@ class TagContext {
   std::array<AdaptiveBit, 3> models_;
 };
 
-bool IsTagged(const std::vector<Edge>& sorted_tags, const Edge& e) {
-  const Edge key{std::min(e[0], e[1]), std::max(e[0], e[1])};
-  return std::binary_search(sorted_tags.begin(), sorted_tags.end(), key);
-}
-
 }  // namespace
 
 std::vector<uint8_t> WriteCreaseChunk(const SemiRegularHierarchy& hierarchy) {
   RangeEncoder encoder;
   TagContext context(hierarchy.NumVertices(0));
   for (const Edge& e : BaseEdgesInOrder(hierarchy)) {
-    const bool tagged = IsTagged(hierarchy.BaseCreases(), e);
+    const bool tagged = hierarchy.IsBaseCrease(e);
     encoder.EncodeBit(context.Model(e), tagged ? 1 : 0);
     if (tagged) context.Tagged(e);
   }

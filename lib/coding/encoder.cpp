@@ -51,6 +51,13 @@ struct Prepared {
   bool kept_compact = false;
 };
 
+// The crease chunk of a stream whose levels follow tagged base edges; empty
+// when there are none (or no levels to follow them).
+std::vector<uint8_t> CreaseChunkFor(const SemiRegularHierarchy& hierarchy) {
+  if (hierarchy.levels() == 0 || !hierarchy.HasCreases()) return {};
+  return WriteCreaseChunk(hierarchy);
+}
+
 // Step 2's result for one base order; passes at different lambdas usually share
 // it, and with it what depends on the connectivity alone: the refinement steps
 // and the EQ coder's level layouts (built on the first pass that needs them).
@@ -59,6 +66,7 @@ struct Renumbered {
   std::vector<Face> faces;
   SemiRegularMesh mesh;
   AnalyzedLevels truth;
+  std::vector<uint8_t> creases;  // the crease chunk (CreaseChunkFor), empty without tags
   std::optional<ClosedLoopSteps> steps;  // refers to mesh.hierarchy: set once in place
   std::vector<std::optional<EqLevelLayout>> eq_layouts;
 
@@ -81,6 +89,7 @@ StatusOr<Renumbered*> RenumberCached(const SemiRegularMesh& mesh, bitstream::Tra
   r.faces = base.decoded.faces;
   EQMESH_ASSIGN_OR_RETURN(r.mesh, RenumberToBase(mesh, base.decoded_to_input, base.decoded.faces));
   r.truth = AnalyzeAllLevels(r.mesh.hierarchy, r.mesh.positions, transform);
+  r.creases = CreaseChunkFor(r.mesh.hierarchy);
   r.eq_layouts.resize(static_cast<size_t>(r.mesh.hierarchy.levels()));
   cache->push_back(std::move(r));
   // A deque keeps its elements in place, so the steps may refer to the stored mesh.
@@ -180,13 +189,6 @@ StatusOr<Prepared> Prepare(const SemiRegularMesh& mesh, bitstream::TransformId t
   return p;
 }
 
-// The crease chunk of a stream whose levels follow tagged base edges; empty
-// when there are none (or no levels to follow them).
-std::vector<uint8_t> CreaseChunkFor(const SemiRegularHierarchy& hierarchy) {
-  if (hierarchy.levels() == 0 || !hierarchy.HasCreases()) return {};
-  return WriteCreaseChunk(hierarchy);
-}
-
 // Sets the header's crease flag, size and version for `creases` (CreaseChunkFor).
 void DeclareCreases(const std::vector<uint8_t>& creases, StreamHeader* header) {
   if (creases.empty()) return;
@@ -266,7 +268,7 @@ const MeshChunkEncoding& ChooseBase(const Prepared& prep, const StreamHeader& he
 }
 
 Pass FinishPass(StreamHeader header, const Prepared& prep, const MeshChunkEncoding& base,
-                const SemiRegularHierarchy& hierarchy, const std::vector<std::vector<uint8_t>>& chunks,
+                const std::vector<uint8_t>& creases, const std::vector<std::vector<uint8_t>>& chunks,
                 const BaseRdReport& base_report, const EncodeOptions& options) {
   Pass pass;
   if (base.compact) header.flags |= bitstream::kCompactBase;
@@ -278,7 +280,7 @@ Pass FinishPass(StreamHeader header, const Prepared& prep, const MeshChunkEncodi
     header.flags |= bitstream::kParallelogramChoice;
     header.version_minor = std::max(header.version_minor, bitstream::kVersionMinorParallelogramChoice);
   }
-  pass.bytes = Assemble(header, base.bytes, KeptBytes(prep, base), CreaseChunkFor(hierarchy), chunks, &pass.report);
+  pass.bytes = Assemble(header, base.bytes, KeptBytes(prep, base), creases, chunks, &pass.report);
   pass.report.lambda = header.lambda();
   pass.report.tangential_factor = header.tangential_factor();
   pass.report.lambda_code = static_cast<int>(header.lambda_code);
@@ -317,7 +319,7 @@ StatusOr<Pass> EncodeAtCode(const Prepared& prep, const EncodeOptions& options, 
   EQMESH_RETURN_IF_ERROR(
       EncodeLevelsClosedLoop(*target->steps, target->truth, base.decoded.positions, coder, options.progress, &chunks)
           .status());
-  return FinishPass(header, prep, base, h, chunks, base_report, options);
+  return FinishPass(header, prep, base, target->creases, chunks, base_report, options);
 }
 
 // Zerotree payload bytes that keep the whole stream within total_budget (never
@@ -358,7 +360,7 @@ StatusOr<Pass> EncodeZerotreeAtCode(const Prepared& prep, const EncodeOptions& o
     zo.tangential_factor = header.tangential_factor();
     if (total_budget > 0) {
       zo.byte_budget = ZerotreePayloadBudget(header, base.bytes.size(), KeptBytes(prep, base).size(),
-                                             CreaseChunkFor(h), total_budget);
+                                             target->creases, total_budget);
     } else {
       zo.min_plane = ZerotreePlaneForLambda(header.lambda());
     }
@@ -366,7 +368,7 @@ StatusOr<Pass> EncodeZerotreeAtCode(const Prepared& prep, const EncodeOptions& o
     EQMESH_ASSIGN_OR_RETURN(chunks[0], EncodeZerotree(h, coeffs, zo, &zr));
     *last_plane = zr.last_plane;
   }
-  return FinishPass(header, prep, base, h, chunks, base_report, options);
+  return FinishPass(header, prep, base, target->creases, chunks, base_report, options);
 }
 
 // A byte budget cut exactly (embedded stream): a first pass at the start lambda

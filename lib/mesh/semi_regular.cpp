@@ -132,14 +132,16 @@ Edge Undirected(const Edge& e) { return {std::min(e[0], e[1]), std::max(e[0], e[
 
 }  // namespace
 
+bool SemiRegularHierarchy::IsBaseCrease(const Edge& e) const {
+  return std::binary_search(base_creases_.begin(), base_creases_.end(), Undirected(e));
+}
+
 std::vector<uint8_t> SemiRegularHierarchy::TagCreaseOdds(int j) const {
   if (base_creases_.empty()) return {};
   const std::vector<Edge>& odd = odd_edges_[j];
   std::vector<uint8_t> tags(odd.size(), 0);
   if (j == 0) {
-    for (size_t k = 0; k < odd.size(); ++k) {
-      tags[k] = std::binary_search(base_creases_.begin(), base_creases_.end(), Undirected(odd[k]));
-    }
+    for (size_t k = 0; k < odd.size(); ++k) tags[k] = IsBaseCrease(odd[k]);
     return tags;
   }
   // A level-j edge is half of a tagged level-(j-1) edge when one end is that

@@ -70,6 +70,8 @@ class SemiRegularHierarchy {
   // The tagged base edges, each (smaller, larger), sorted; empty: none.
   const std::vector<Edge>& BaseCreases() const { return base_creases_; }
   bool HasCreases() const { return !base_creases_.empty(); }
+  // Whether base edge e (either orientation) is tagged.
+  bool IsBaseCrease(const Edge& e) const;
   // Whether odd vertex NumVertices(j) + k refines a tagged level-j edge.
   bool IsCreaseOdd(int j, uint32_t k) const { return !crease_odd_[j].empty() && crease_odd_[j][k] != 0; }
 

@@ -10,8 +10,9 @@
 // masks beyond what the boundary rules give (butterfly.cpp, rules C1-C3).
 //
 // Tagged edges are sparse (2^j per tagged base edge at level j, the level's
-// edges 4^j per base face), so they are kept as sorted lists, with one byte per
-// vertex that answers "no crease here" for almost every query.
+// edges 4^j per base face), so they are kept as a sorted list of links (each
+// edge from both ends), with one byte per vertex that answers "no crease here"
+// for almost every query.
 #pragma once
 
 #include <cstdint>
@@ -40,7 +41,6 @@ class CreaseEdges {
  private:
   const LevelAdjacency& adjacency_;
   std::vector<uint8_t> count_;                         // per vertex; empty without creases
-  std::vector<uint64_t> edges_;                        // (smaller << 32) | larger, sorted
   std::vector<std::pair<uint32_t, uint32_t>> links_;   // (vertex, crease neighbour), sorted
 };
 
