@@ -162,6 +162,7 @@ std::vector<uint8_t> SemiRegularHierarchy::TagCreaseOdds(int j) const {
 
 Status SemiRegularHierarchy::SetBaseCreases(std::vector<Edge> edges) {
   if (faces_.empty()) return InvalidArgument("crease edges on a hierarchy that was never built");
+  if (edges.empty() && base_creases_.empty()) return Status::Ok();  // the common case: nothing to check or retag
   std::vector<Edge> base_edges;
   base_edges.reserve(faces_[0].size() * 3);
   for (const Face& f : faces_[0]) {
