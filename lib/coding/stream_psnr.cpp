@@ -2,10 +2,19 @@
 
 #include "coding/decoder.h"
 #ifdef EQMESH_HAVE_METRICS
+#include <mutex>
+
 #include "metrics/surface_distance.h"
 #endif
 
 namespace eqmesh {
+
+#ifdef EQMESH_HAVE_METRICS
+struct PreparedOriginal::Series {
+  std::mutex lock;
+  ApproximationSeries trees;
+};
+#endif
 
 StatusOr<std::shared_ptr<const PreparedOriginal>> PrepareOriginal(const Mesh& original) {
 #ifdef EQMESH_HAVE_METRICS
@@ -13,6 +22,7 @@ StatusOr<std::shared_ptr<const PreparedOriginal>> PrepareOriginal(const Mesh& or
   auto prepared = std::make_shared<PreparedOriginal>();
   prepared->mesh = &original;
   prepared->reference = std::make_shared<const ReferenceSurface>(std::move(reference));
+  prepared->series = std::make_shared<PreparedOriginal::Series>();
   return std::shared_ptr<const PreparedOriginal>(std::move(prepared));
 #else
   (void)original;
@@ -26,7 +36,10 @@ StatusOr<double> MeasureMeshPsnr(const Mesh& mesh, const Mesh& original, uint64_
   CompareOptions compare;
   compare.samples = samples;
   if (prepared != nullptr && prepared->mesh == &original && prepared->reference != nullptr) {
-    EQMESH_ASSIGN_OR_RETURN(const SurfaceDistance d, prepared->reference->Compare(mesh, compare));
+    std::unique_lock<std::mutex> series;
+    if (prepared->series != nullptr) series = std::unique_lock<std::mutex>(prepared->series->lock, std::try_to_lock);
+    ApproximationSeries* trees = series.owns_lock() ? &prepared->series->trees : nullptr;
+    EQMESH_ASSIGN_OR_RETURN(const SurfaceDistance d, prepared->reference->Compare(mesh, compare, trees));
     return d.psnr_db;
   }
   EQMESH_ASSIGN_OR_RETURN(const SurfaceDistance d, CompareSurfaces(original, mesh, compare));

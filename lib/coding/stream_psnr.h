@@ -20,6 +20,12 @@ class ReferenceSurface;
 struct PreparedOriginal {
   const Mesh* mesh = nullptr;  // what it was prepared from
   std::shared_ptr<const ReferenceSurface> reference;
+  // The search tree of the mesh measured last, refitted for the next one when
+  // it has the same faces (metrics' ApproximationSeries): a search's trial
+  // streams of one level count decode to one connectivity. Taken by one
+  // measurement at a time; another measuring meanwhile builds its own tree.
+  struct Series;
+  std::shared_ptr<Series> series;
 };
 
 // kUnsupportedFeature in a build without eqmesh_metrics, as every function here.

@@ -306,6 +306,47 @@ StatusOr<TriangleBvh> TriangleBvh::Build(const Mesh& mesh) {
   return bvh;
 }
 
+Status TriangleBvh::Refit(const Mesh& mesh) {
+  EQMESH_RETURN_IF_ERROR(ValidateForBvh(mesh));
+  if (mesh.faces.size() != face_ids_.size()) {
+    return InvalidArgument("refit: " + std::to_string(mesh.faces.size()) + " faces, the tree has " +
+                           std::to_string(face_ids_.size()));
+  }
+  Box all;
+  for (size_t i = 0; i < triangles_.size(); ++i) {
+    const Face& f = mesh.faces[face_ids_[i]];
+    triangles_[i] = {mesh.positions[f[0]], mesh.positions[f[1]], mesh.positions[f[2]]};
+    all.Grow(triangles_[i].v0);
+    all.Grow(triangles_[i].v1);
+    all.Grow(triangles_[i].v2);
+  }
+  scale_ = std::max((all.hi - all.lo).norm(), std::numeric_limits<double>::min());
+  const double pad = 1e-9 * scale_;
+  // Children follow their parent in the array (Build pushes them later), so a
+  // backward sweep sees both children before their parent. Padding each box by
+  // the same amount commutes with the union (rounding is monotone), so an
+  // interior box is its children's union, as Build pads its triangles' union.
+  for (size_t k = nodes_.size(); k-- > 0;) {
+    Node& node = nodes_[k];
+    if (node.count > 0) {
+      Box box;
+      for (uint32_t i = node.first; i < node.first + node.count; ++i) {
+        box.Grow(triangles_[i].v0);
+        box.Grow(triangles_[i].v1);
+        box.Grow(triangles_[i].v2);
+      }
+      node.lo = box.lo - Vec3::Constant(pad);
+      node.hi = box.hi + Vec3::Constant(pad);
+    } else {
+      const Node& left = nodes_[node.first];
+      const Node& right = nodes_[node.first + 1];
+      node.lo = left.lo.cwiseMin(right.lo);
+      node.hi = left.hi.cwiseMax(right.hi);
+    }
+  }
+  return Status::Ok();
+}
+
 BoundingBox TriangleBvh::bounds() const {
   BoundingBox box;
   if (nodes_.empty()) return box;

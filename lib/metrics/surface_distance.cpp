@@ -6,7 +6,13 @@
 // added in block order. That is what makes the doubles identical for any
 // thread count. Within a block the samples are in face order, hence spatially
 // coherent: the previous sample's closest face gives an upper bound that lets
-// the BVH search prune early.
+// the BVH search prune early. In a series of measurements (ApproximationSeries)
+// each sample also tries the face it found the last time (the same point of the
+// original, or nearly the same point of an approximation that only moved), and
+// the approximation's tree is refitted instead of built: an encoder's PSNR
+// search measures every trial stream, and the trials of one level count share
+// one connectivity. Hints and tree shapes only change how fast the exact
+// answer is found.
 //
 // Distances below kNumericalZero x (larger bbox diagonal) are counted as 0:
 // re-projecting a sample onto the very triangle it was drawn from leaves
@@ -18,6 +24,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "mesh/triangle_bvh.h"
@@ -39,26 +46,35 @@ struct BlockSums {
   double sum_d2 = 0.0, sum_d = 0.0, max_d = 0.0;
 };
 
-// Squared distance from p to `to`, starting from the bound given by the
-// previous sample's closest face; updates *hint.
-double SquaredDistanceWithHint(const TriangleBvh& bvh, const Mesh& to, const Vec3& p,
-                               uint32_t* hint) {
+// Squared distance from p to face f of `to`.
+double SquaredDistanceToFace(const Mesh& to, uint32_t f, const Vec3& p) {
+  const Face& t = to.faces[f];
+  std::array<double, 3> bary;
+  const Vec3 q = ClosestPointOnTriangle(p, to.positions[t[0]], to.positions[t[1]], to.positions[t[2]], &bary);
+  return (q - p).squaredNorm();
+}
+
+// Squared distance from p to `to`, searched within the nearer of the hints'
+// faces: the previous sample's closest face (*hint) and, in a series, this
+// sample's closest face the last time (*own). A hint only bounds the search,
+// so the distance is the unbounded search's. Updates both hints.
+double SquaredDistanceWithHint(const TriangleBvh& bvh, const Mesh& to, const Vec3& p, uint32_t* hint,
+                               uint32_t* own) {
   double hint_d2 = std::numeric_limits<double>::infinity();
-  double bound = std::numeric_limits<double>::infinity();
-  if (*hint != kNoFace) {
-    const Face& f = to.faces[*hint];
-    std::array<double, 3> bary;
-    const Vec3 q = ClosestPointOnTriangle(p, to.positions[f[0]], to.positions[f[1]],
-                                          to.positions[f[2]], &bary);
-    hint_d2 = (q - p).squaredNorm();
-    bound = std::sqrt(hint_d2) * (1.0 + 1e-9);  // inclusive of the hint face itself
+  uint32_t hint_face = kNoFace;
+  for (const uint32_t* h : {hint, own}) {
+    if (h == nullptr || *h == kNoFace || *h >= to.faces.size()) continue;
+    const double d2 = SquaredDistanceToFace(to, *h, p);
+    if (d2 < hint_d2) hint_d2 = d2, hint_face = *h;
   }
+  // Inclusive of the hint face itself.
+  const double bound = hint_face == kNoFace ? std::numeric_limits<double>::infinity()
+                                            : std::sqrt(hint_d2) * (1.0 + 1e-9);
   const ClosestPointResult r = bvh.ClosestPoint(p, bound);
-  if (r.found() && r.squared_distance <= hint_d2) {
-    *hint = r.face;
-    return r.squared_distance;
-  }
-  return hint_d2;
+  const bool searched = r.found() && r.squared_distance <= hint_d2;
+  *hint = searched ? r.face : hint_face;
+  if (own != nullptr) *own = *hint;
+  return searched ? r.squared_distance : hint_d2;
 }
 
 struct DirectionInput {
@@ -67,6 +83,7 @@ struct DirectionInput {
   const Mesh& to;
   uint64_t samples, seed, direction;
   double zero_distance;  // distances at or below this count as 0
+  uint32_t* sample_faces = nullptr;  // per sample, its closest face the last time (a series), or null
 };
 
 BlockSums MeasureBlock(const DirectionInput& in, uint64_t block) {
@@ -78,8 +95,9 @@ BlockSums MeasureBlock(const DirectionInput& in, uint64_t block) {
   in.from.Sample(in.samples, first, count, &rng, &points);
   BlockSums sums;
   uint32_t hint = kNoFace;
-  for (const Vec3& p : points) {
-    double d2 = SquaredDistanceWithHint(in.bvh, in.to, p, &hint);
+  for (uint64_t i = 0; i < points.size(); ++i) {
+    uint32_t* own = in.sample_faces != nullptr ? in.sample_faces + first + i : nullptr;
+    double d2 = SquaredDistanceWithHint(in.bvh, in.to, points[i], &hint, own);
     double d = std::sqrt(d2);
     if (d <= in.zero_distance) d = d2 = 0.0;
     sums.sum_d2 += d2;
@@ -151,21 +169,86 @@ StatusOr<ReferenceParts> PrepareReference(const Mesh& a) {
   return r;
 }
 
+}  // namespace
+
+struct ApproximationSeries::State {
+  std::vector<Face> faces;  // of the mesh `bvh` was last fitted to
+  std::optional<TriangleBvh> bvh;
+  // What the last measurement's samples found, per sample: the closest face of
+  // the approximation to each sample of the original (valid while the faces
+  // stay the same) and of the original to each sample of the approximation
+  // (any face of it is a valid hint). Kept for one original, sample count and
+  // seed: the original's samples are then the same points again.
+  const void* original = nullptr;
+  uint64_t samples = 0, seed = 0;
+  std::vector<uint32_t> to_approximation, to_original;
+};
+
+ApproximationSeries::ApproximationSeries() : state_(std::make_unique<State>()) {}
+ApproximationSeries::~ApproximationSeries() = default;
+ApproximationSeries::ApproximationSeries(ApproximationSeries&&) noexcept = default;
+ApproximationSeries& ApproximationSeries::operator=(ApproximationSeries&&) noexcept = default;
+
+namespace {
+
+// The search tree over `b`: the series' tree refitted when it was last fitted
+// to b's faces (*refitted), else a new one (kept in the series when there is
+// one, else in *own).
+StatusOr<const TriangleBvh*> TreeOver(const Mesh& b, ApproximationSeries::State* series,
+                                      std::optional<TriangleBvh>* own, bool* refitted) {
+  *refitted = series != nullptr && series->bvh && series->faces == b.faces && series->bvh->Refit(b).ok();
+  if (*refitted) return &*series->bvh;
+  if (series != nullptr) series->bvh.reset();  // not two trees in memory at once
+  auto built = TriangleBvh::Build(b);
+  if (!built.ok()) return built.status();
+  if (series == nullptr) {
+    own->emplace(std::move(*built));
+    return &**own;
+  }
+  series->bvh.emplace(std::move(*built));
+  series->faces = b.faces;
+  return &*series->bvh;
+}
+
+// Readies the series' per-sample faces for a measurement of `samples` per
+// direction against `original`; those found on an approximation with other
+// faces are dropped.
+void ReadySampleFaces(ApproximationSeries::State* series, const void* original, uint64_t samples, uint64_t seed,
+                      bool same_faces) {
+  const bool same_samples = series->original == original && series->samples == samples && series->seed == seed;
+  if (!same_samples || !same_faces) series->to_approximation.assign(samples, kNoFace);
+  if (!same_samples) series->to_original.assign(samples, kNoFace);
+  series->original = original;
+  series->samples = samples;
+  series->seed = seed;
+}
+
 // `b` at the reference's scale against it; lengths at that scale.
-StatusOr<SurfaceDistance> CompareAtOwnScale(const ReferenceParts& a, const Mesh& b, const CompareOptions& options) {
+StatusOr<SurfaceDistance> CompareAtOwnScale(const ReferenceParts& a, const Mesh& b, const CompareOptions& options,
+                                            ApproximationSeries::State* series) {
   auto sampler_b = AreaSampler::Build(b);
   if (!sampler_b.ok()) return sampler_b.status().WithContext("other mesh");
-  auto bvh_b = TriangleBvh::Build(b);
-  if (!bvh_b.ok()) return bvh_b.status().WithContext("other mesh");
+  std::optional<TriangleBvh> own;
+  bool refitted = false;
+  auto tree = TreeOver(b, series, &own, &refitted);
+  if (!tree.ok()) return tree.status().WithContext("other mesh");
+  const TriangleBvh* bvh_b = *tree;
 
   SurfaceDistance r;
   r.samples = options.samples > 0 ? options.samples : DefaultSampleCount(a.mesh, b);
   r.bbox_diagonal = a.diagonal;
   const double zero = kNumericalZero * std::max(r.bbox_diagonal, BoundingBoxDiagonal(b));
+  uint32_t* to_b = nullptr;
+  uint32_t* to_a = nullptr;
+  if (series != nullptr) {
+    ReadySampleFaces(series, &a, r.samples, options.seed, refitted);
+    to_b = series->to_approximation.data();
+    to_a = series->to_original.data();
+  }
   const DirectionStats ab =
-      MeasureDirection({a.sampler, *bvh_b, b, r.samples, options.seed, 0, zero}, options.threads);
+      MeasureDirection({a.sampler, *bvh_b, b, r.samples, options.seed, 0, zero, to_b}, options.threads);
   const DirectionStats ba =
-      MeasureDirection({*sampler_b, a.bvh, a.mesh, r.samples, options.seed, 1, zero}, options.threads);
+      MeasureDirection({*sampler_b, a.bvh, a.mesh, r.samples, options.seed, 1, zero, to_a}, options.threads);
   r.rms_ab = ab.rms;
   r.rms_ba = ba.rms;
   r.rms = std::max(ab.rms, ba.rms);
@@ -214,12 +297,14 @@ StatusOr<ReferenceSurface> ReferenceSurface::Build(const Mesh& a) {
   return reference;
 }
 
-StatusOr<SurfaceDistance> ReferenceSurface::Compare(const Mesh& b, const CompareOptions& options) const {
+StatusOr<SurfaceDistance> ReferenceSurface::Compare(const Mesh& b, const CompareOptions& options,
+                                                    ApproximationSeries* series) const {
   EQMESH_RETURN_IF_ERROR(CheckOptions(options));
   const double scale = prepared_->scale;
-  if (scale == 1.0) return CompareAtOwnScale(*prepared_, b, options);
+  ApproximationSeries::State* state = series != nullptr ? series->state_.get() : nullptr;
+  if (scale == 1.0) return CompareAtOwnScale(*prepared_, b, options, state);
   // Both by the same power of two (exact), the lengths back by its inverse.
-  EQMESH_ASSIGN_OR_RETURN(SurfaceDistance r, CompareAtOwnScale(*prepared_, Scaled(b, scale), options));
+  EQMESH_ASSIGN_OR_RETURN(SurfaceDistance r, CompareAtOwnScale(*prepared_, Scaled(b, scale), options, state));
   for (double* length : {&r.bbox_diagonal, &r.rms_ab, &r.rms_ba, &r.rms, &r.mean_ab, &r.mean_ba, &r.mean,
                          &r.hausdorff_ab, &r.hausdorff_ba, &r.hausdorff}) {
     *length /= scale;

@@ -52,6 +52,26 @@ Status ValidateForCompare(const Mesh& mesh);
 StatusOr<SurfaceDistance> CompareSurfaces(const Mesh& a, const Mesh& b,
                                           const CompareOptions& options = {});
 
+// The approximation side of a comparison kept for the next one: its search
+// tree. An encoder measures series of meshes with one connectivity (the trial
+// streams of one level count, which differ only in positions); a Compare given
+// the series refits the tree of the last mesh when the faces are the same
+// (TriangleBvh::Refit) instead of building one, which gives the same doubles
+// without a build's time and allocations. One series per thread at a time.
+class ApproximationSeries {
+ public:
+  ApproximationSeries();
+  ~ApproximationSeries();
+  ApproximationSeries(ApproximationSeries&&) noexcept;
+  ApproximationSeries& operator=(ApproximationSeries&&) noexcept;
+
+  struct State;  // opaque: defined where the meter uses it
+
+ private:
+  friend class ReferenceSurface;
+  std::unique_ptr<State> state_;
+};
+
 // The original side of CompareSurfaces prepared once (its scale, area sampler
 // and search tree), for measuring many meshes against one original: the
 // encoder's searches measure every trial stream, the remesher every retried
@@ -62,7 +82,8 @@ class ReferenceSurface {
   // Fails where CompareSurfaces would fail on `a` as the original.
   static StatusOr<ReferenceSurface> Build(const Mesh& a);
 
-  StatusOr<SurfaceDistance> Compare(const Mesh& b, const CompareOptions& options = {}) const;
+  StatusOr<SurfaceDistance> Compare(const Mesh& b, const CompareOptions& options = {},
+                                    ApproximationSeries* series = nullptr) const;
 
  private:
   ReferenceSurface() = default;

@@ -184,6 +184,43 @@ TEST(CompareSurfaces, RejectsBadInputWithClearErrors) {
   EXPECT_EQ(CompareSurfaces(good, good, {100, 1, -1}).status().code(), StatusCode::kInvalidArgument);
 }
 
+// A series keeps the last measured mesh's tree and what each sample found, to
+// refit and start from for the next mesh with the same faces: every measurement
+// of a series gives the doubles a fresh comparison gives, through meshes with
+// the same faces (moved), other faces, other sample counts and seeds, and
+// another original.
+TEST(ReferenceSurface, MeasuresASeriesAsSeparateComparisons) {
+  const Mesh a = testing::MakeTorus(30, 14);
+  const Mesh a2 = testing::MakeTorus(20, 10);
+  auto reference = ReferenceSurface::Build(a);
+  auto reference2 = ReferenceSurface::Build(a2);
+  ASSERT_TRUE(reference.ok() && reference2.ok());
+  const Mesh coarse = testing::MakeTorus(24, 12);
+  const Mesh fine = testing::MakeTorus(36, 16);
+  ApproximationSeries series;
+  int step = 0;
+  for (const Mesh* shape : {&coarse, &coarse, &fine, &fine, &coarse}) {
+    for (const CompareOptions& options : {CompareOptions{3 * 4096 + 5, 11, 2}, CompareOptions{5000, 12, 1}}) {
+      Mesh other = Translated(*shape, Vec3(0.001 * step, -0.002 * step, 0.0));
+      other.positions[3] += Vec3(0.0, 0.0, 0.01 * (step % 3));
+      ++step;
+      for (const ReferenceSurface* ref : {&*reference, &*reference2}) {
+        auto expected = ref->Compare(other, options);
+        auto got = ref->Compare(other, options, &series);
+        ASSERT_TRUE(expected.ok() && got.ok()) << step;
+        ExpectBitIdentical(*expected, *got);
+      }
+    }
+  }
+  Mesh broken = coarse;
+  broken.faces[0][1] = 100000;
+  EXPECT_FALSE(reference->Compare(broken, {}, &series).ok());
+  auto after = reference->Compare(coarse, CompareOptions{4096, 3, 1}, &series);
+  auto fresh = reference->Compare(coarse, CompareOptions{4096, 3, 1});
+  ASSERT_TRUE(after.ok() && fresh.ok());
+  ExpectBitIdentical(*fresh, *after);
+}
+
 }  // namespace
 }  // namespace eqmesh
 

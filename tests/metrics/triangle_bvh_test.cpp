@@ -134,6 +134,50 @@ TEST(TriangleBvh, FilteredAndBoundedQueries) {
   EXPECT_FALSE(bvh->ClosestPoint({NAN, 0, 0}).found());
 }
 
+// A tree refitted to moved corners answers as one built from them: the same
+// distances for closest points and rays (here the corners are shrunk towards the
+// centre, so every box moves), and a refit to the positions it was built from
+// changes nothing. A mesh with other faces is refused.
+TEST(TriangleBvh, RefittedTreeAnswersAsABuiltOne) {
+  const Mesh mesh = testing::MakeTorus(24, 12);
+  Mesh moved = mesh;
+  TestRng jitter(5);
+  for (Vec3& p : moved.positions) p = 0.7 * p + jitter.InBox(0.02);
+  auto built = TriangleBvh::Build(moved);
+  auto refitted = TriangleBvh::Build(mesh);
+  ASSERT_TRUE(built.ok() && refitted.ok());
+  ASSERT_TRUE(refitted->Refit(moved).ok());
+  EXPECT_EQ(refitted->bounds().min, built->bounds().min);
+  EXPECT_EQ(refitted->bounds().max, built->bounds().max);
+  TestRng rng(9);
+  for (int i = 0; i < 1000; ++i) {
+    const Vec3 p = rng.InBox(i % 2 ? 1.2 : 4.0);
+    const ClosestPointResult a = refitted->ClosestPoint(p);
+    const ClosestPointResult b = built->ClosestPoint(p);
+    ASSERT_TRUE(a.found() && b.found());
+    EXPECT_EQ(a.squared_distance, b.squared_distance);
+    EXPECT_EQ(a.squared_distance, BruteForceDistance2(moved, p));
+    const Vec3 d = rng.InBox(1.0).normalized();
+    std::vector<RayHit> ha, hb;
+    refitted->RayAllHits(p, d, 0.0, 10.0, &ha);
+    built->RayAllHits(p, d, 0.0, 10.0, &hb);
+    ASSERT_EQ(ha.size(), hb.size());
+    for (size_t k = 0; k < ha.size(); ++k) EXPECT_EQ(ha[k].t, hb[k].t);
+  }
+  auto again = TriangleBvh::Build(mesh);
+  ASSERT_TRUE(again.ok() && again->Refit(mesh).ok());
+  for (int i = 0; i < 200; ++i) {
+    const Vec3 p = rng.InBox(2.0);
+    EXPECT_EQ(again->ClosestPoint(p).squared_distance, BruteForceDistance2(mesh, p));
+  }
+  Mesh fewer = mesh;
+  fewer.faces.pop_back();
+  EXPECT_FALSE(refitted->Refit(fewer).ok());
+  Mesh broken = mesh;
+  broken.positions[0].x() = NAN;
+  EXPECT_FALSE(refitted->Refit(broken).ok());
+}
+
 TEST(TriangleBvh, RayAllHitsMatchesBruteForce) {
   const Mesh mesh = testing::MakeTorus(20, 10);
   auto bvh = TriangleBvh::Build(mesh);
