@@ -105,8 +105,8 @@ nlohmann::json ToJson(const EncodeArgs& a, const RemeshReport& remesh, const Enc
     j["representations"] = {{"normal_mesh", {{"bytes", choice.remeshed_bytes}, {"psnr_db", choice.remeshed_psnr_db}}},
                             {"as_is", {{"bytes", choice.as_is_bytes}, {"psnr_db", choice.as_is_psnr_db}}}};
   }
-  j["base_vertices"] = choice.as_is ? remesh.input_vertices : remesh.base_vertices;
-  j["semi_regular_vertices"] = choice.as_is ? remesh.input_vertices : remesh.output_vertices;
+  j["base_vertices"] = choice.as_is ? choice.as_is_vertices : remesh.base_vertices;
+  j["semi_regular_vertices"] = choice.as_is ? choice.as_is_vertices : remesh.output_vertices;
   j["remesh_levels"] = remesh.levels;
   j["levels"] = r.level_bytes.size();
   j["level_search"] = nlohmann::json::array();
@@ -386,12 +386,15 @@ int RunEncode(int argc, char** argv) {
     std::printf("%s\n",
                 ToJson(a, remesh_report, report, search, choice, remesh_seconds, encode_seconds).dump(2).c_str());
   } else {
+    const std::string as_is = choice.as_is_vertices < remesh_report.input_vertices
+                                  ? "the input simplified to " + std::to_string(choice.as_is_vertices) +
+                                        " vertices, coded as is"
+                                  : std::string("the input coded as is");
     const std::string shape = !choice.as_is              ? std::to_string(report.level_bytes.size()) + " levels"
-                              : choice.remeshed_bytes > 0 ? "the input coded as is (" +
-                                                                std::to_string(choice.remeshed_bytes) +
+                              : choice.remeshed_bytes > 0 ? as_is + " (" + std::to_string(choice.remeshed_bytes) +
                                                                 " bytes as a normal mesh)"
-                              : choice.nothing_remeshed   ? "the input coded as is (too small to remesh)"
-                                                          : "the input coded as is (no normal-mesh stream met the target)";
+                              : choice.nothing_remeshed   ? as_is + " (too small to remesh)"
+                                                          : as_is + " (no normal-mesh stream met the target)";
     std::printf("%s: %zu bytes, %.3f bits per input vertex (%zu vertices), %s", a.out_path.c_str(),
                 report.total_bytes, report.bpv, options.input_vertices, shape.c_str());
     if (report.psnr_measured) std::printf(", PSNR %.2f dB", report.psnr_db);

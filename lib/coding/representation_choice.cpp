@@ -1,12 +1,15 @@
 // Representation choice: see representation_choice.h.
 #include "coding/representation_choice.h"
 
+#include <cmath>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 
 #include "coding/bitstream_shared.h"
 #include "coding/compact_base/compact_base_encoder.h"
+#include "remesh/quadric_simplification.h"
 #include "remesh/remesh.h"
 
 namespace eqmesh {
@@ -98,13 +101,65 @@ struct AsIsCandidate {
   StatusOr<std::vector<uint8_t>> stream = std::vector<uint8_t>();
   EncodeReport report;
   LevelCountReport levels;
+  size_t vertices = 0;  // of the mesh coded
   bool better = false;  // replaces the remeshed stream
 };
 
 AsIsCandidate EncodeAsIs(const SemiRegularMesh& as_is_mesh, const EncodeOptions& options) {
   AsIsCandidate c;
   c.stream = EncodeChoosingLevels(as_is_mesh, options, &c.report, &c.levels);
+  c.vertices = as_is_mesh.positions.size();
   return c;
+}
+
+// The as-is mesh simplified to `share` of its vertices (none: the
+// simplification stopped short of one vertex fewer).
+std::optional<SemiRegularMesh> SimplifiedAsIs(const SemiRegularMesh& as_is, double share) {
+  Mesh surface;
+  surface.positions = as_is.positions;
+  surface.faces = as_is.hierarchy.BaseFaces();
+  const auto target = static_cast<size_t>(std::llround(share * static_cast<double>(surface.positions.size())));
+  auto simplified = SimplifyByQuadrics(surface, target);
+  if (!simplified.ok() || simplified->positions.size() >= surface.positions.size()) return std::nullopt;
+  SemiRegularMesh out;
+  auto hierarchy = SemiRegularHierarchy::Build(static_cast<uint32_t>(simplified->positions.size()),
+                                               std::move(simplified->faces), 0);
+  if (!hierarchy.ok()) return std::nullopt;
+  out.hierarchy = std::move(*hierarchy);
+  out.positions = std::move(simplified->positions);
+  return out;
+}
+
+// Whether `a` replaces `b` among as-is candidates for a target.
+bool BeatsForTarget(const EncodeOptions& options, const AsIsCandidate& a, const AsIsCandidate& b) {
+  if (!a.stream.ok()) return false;
+  return !b.stream.ok() || AsIsIsBetter(options, b.report, a.report);
+}
+
+// With a target: the input as is, then simplified (kSimplifyShare steps, see
+// the header); the best of those tried.
+AsIsCandidate EncodeBestAsIs(const SemiRegularMesh& as_is, const EncodeOptions& options) {
+  AsIsCandidate best = EncodeAsIs(as_is, options);
+  if (!best.stream.ok()) return best;  // a simplified mesh reaches no further
+  const SemiRegularMesh* from = &as_is;
+  std::optional<SemiRegularMesh> kept;
+  for (int step = 0; step < kMaxSimplifySteps; ++step) {
+    std::optional<SemiRegularMesh> mesh = SimplifiedAsIs(*from, kSimplifyShare);
+    if (!mesh) break;
+    AsIsCandidate c = EncodeAsIs(*mesh, options);
+    if (!BeatsForTarget(options, c, best)) {
+      if (step > 0) break;
+      std::optional<SemiRegularMesh> half = SimplifiedAsIs(as_is, std::sqrt(kSimplifyShare));
+      if (!half) break;
+      AsIsCandidate h = EncodeAsIs(*half, options);
+      if (BeatsForTarget(options, h, best)) best = std::move(h);
+      break;
+    }
+    best = std::move(c);
+    kept = std::move(mesh);
+    from = &*kept;
+  }
+  return best;
 }
 
 // Without a target. Below the floor the higher PSNR at the caller's lambda
@@ -178,13 +233,14 @@ StatusOr<std::vector<uint8_t>> EncodeChoosingRepresentation(const SemiRegularMes
         EQMESH_ASSIGN_OR_RETURN(as_is, UntargetedAsIs(*as_is_mesh, options, representation, *stream, &remeshed_report));
         c.remeshed_psnr_db = remeshed_report.psnr_db;
       } else {
-        as_is = EncodeAsIs(*as_is_mesh, options);
+        as_is = EncodeBestAsIs(*as_is_mesh, options);
         as_is.better = as_is.stream.ok() &&
                        (!stream.ok() || AsIsIsBetter(options, remeshed_report, as_is.report));
       }
       if (as_is.stream.ok()) {
         c.as_is_bytes = as_is.stream->size();
         c.as_is_psnr_db = as_is.report.psnr_db;
+        c.as_is_vertices = as_is.vertices;
       }
       if (as_is.better) {
         c.as_is = true;
