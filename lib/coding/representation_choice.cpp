@@ -136,6 +136,16 @@ bool BeatsForTarget(const EncodeOptions& options, const AsIsCandidate& a, const 
   return !b.stream.ok() || AsIsIsBetter(options, b.report, a.report);
 }
 
+// A PSNR target's search for a simplified mesh starts at the lambda the best
+// candidate so far ended on: near its answer, and where quality is monotone in
+// lambda the answer does not depend on the start. (A rate target's does: it
+// takes the first stream within tolerance, so it starts as asked.)
+EncodeOptions From(const EncodeOptions& options, const AsIsCandidate& best) {
+  EncodeOptions o = options;
+  if (options.target_psnr > 0 && best.stream.ok() && best.report.lambda > 0) o.lambda = best.report.lambda;
+  return o;
+}
+
 // With a target: the input as is, then simplified (kSimplifyShare steps, see
 // the header); the best of those tried.
 AsIsCandidate EncodeBestAsIs(const SemiRegularMesh& as_is, const EncodeOptions& options) {
@@ -146,12 +156,12 @@ AsIsCandidate EncodeBestAsIs(const SemiRegularMesh& as_is, const EncodeOptions& 
   for (int step = 0; step < kMaxSimplifySteps; ++step) {
     std::optional<SemiRegularMesh> mesh = SimplifiedAsIs(*from, kSimplifyShare);
     if (!mesh) break;
-    AsIsCandidate c = EncodeAsIs(*mesh, options);
+    AsIsCandidate c = EncodeAsIs(*mesh, From(options, best));
     if (!BeatsForTarget(options, c, best)) {
       if (step > 0) break;
       std::optional<SemiRegularMesh> half = SimplifiedAsIs(as_is, std::sqrt(kSimplifyShare));
       if (!half) break;
-      AsIsCandidate h = EncodeAsIs(*half, options);
+      AsIsCandidate h = EncodeAsIs(*half, From(options, best));
       if (BeatsForTarget(options, h, best)) best = std::move(h);
       break;
     }
