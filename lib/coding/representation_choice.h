@@ -1,6 +1,7 @@
 // Which representation a mesh travels in: the remeshed normal mesh, or the input
 // itself coded as is (a stream with no refinement levels whose base is the input,
-// in the compact chunk's surface frames, compact_positions.h).
+// in the compact chunk's surface frames, compact_positions.h), with a target also
+// the input simplified (kSimplifyShare) and coded as is.
 //
 // The normal-mesh codec wins where the input is dense next to its shape (scans,
 // sculpts: a few bits per input vertex reach 70 dB, the seed paper's regime). On a
@@ -11,6 +12,9 @@
 // target the smaller stream that meets it, for a rate target the higher PSNR,
 // without a target the smaller at the remeshed stream's quality.
 // Departure from the seed: the seed codes every input as a normal mesh.
+// Departure from Garland & Heckbert's use of their simplification (a target
+// vertex count or error): here the vertex count is chosen by the coded stream's
+// own size at the target, measured try by try.
 #pragma once
 
 #include <cstdint>
