@@ -164,7 +164,8 @@ void PrintGlbSummary(const std::string& out_path, const gltf::ConvertReport& rep
     std::printf("  mesh %d primitive %d: %zu vertices -> %llu-byte stream, %.3f bits per input vertex, %s",
                 p.mesh, p.primitive, p.input_vertices, static_cast<unsigned long long>(p.stream_bytes),
                 p.input_vertices ? 8.0 * static_cast<double>(p.stream_bytes) / static_cast<double>(p.input_vertices) : 0.0,
-                p.as_is ? "coded as is" : (std::to_string(p.levels) + " levels").c_str());
+                p.as_is ? ("coded as is at " + std::to_string(p.output_vertices) + " vertices").c_str()
+                        : (std::to_string(p.levels) + " levels").c_str());
     if (p.psnr_db > 0) std::printf(", PSNR %.2f dB", p.psnr_db);
     std::printf("\n");
     if (!p.note.empty()) std::fprintf(stderr, "eqmesh encode: warning: mesh %d primitive %d %s\n", p.mesh, p.primitive,
