@@ -146,10 +146,9 @@ EncodeOptions From(const EncodeOptions& options, const AsIsCandidate& best) {
   return o;
 }
 
-// With a target: the input as is, then simplified (kSimplifyShare steps, see
-// the header); the best of those tried.
-AsIsCandidate EncodeBestAsIs(const SemiRegularMesh& as_is, const EncodeOptions& options) {
-  AsIsCandidate best = EncodeAsIs(as_is, options);
+// With a target: `best` (the input as is, coded for it), then the input
+// simplified (kSimplifyShare steps, see the header); the best of those tried.
+AsIsCandidate WalkSimplified(const SemiRegularMesh& as_is, const EncodeOptions& options, AsIsCandidate best) {
   if (!best.stream.ok()) return best;  // a simplified mesh reaches no further
   const SemiRegularMesh* from = &as_is;
   std::optional<SemiRegularMesh> kept;
@@ -172,10 +171,15 @@ AsIsCandidate EncodeBestAsIs(const SemiRegularMesh& as_is, const EncodeOptions& 
   return best;
 }
 
+AsIsCandidate EncodeBestAsIs(const SemiRegularMesh& as_is, const EncodeOptions& options) {
+  return WalkSimplified(as_is, options, EncodeAsIs(as_is, options));
+}
+
 // Without a target. Below the floor the higher PSNR at the caller's lambda
 // wins. Above it the as-is stream at that lambda wins where it is neither
-// larger nor worse; failing that, the as-is stream searched for the remeshed
-// one's PSNR wins where it is no larger. (Streams at one lambda sit at
+// larger nor worse (then simplified where that keeps its PSNR in fewer bytes);
+// failing that, the as-is stream searched for the remeshed one's PSNR (and
+// simplified likewise) wins where it is no larger. (Streams at one lambda sit at
 // unrelated points of the two rate-distortion curves: a 66-vertex cylinder as
 // is, 286 B at 76.3 dB; its normal mesh within 128 triangles, 4,407 B at 77.9.)
 StatusOr<AsIsCandidate> UntargetedAsIs(const SemiRegularMesh& as_is_mesh, const EncodeOptions& options,
@@ -195,11 +199,16 @@ StatusOr<AsIsCandidate> UntargetedAsIs(const SemiRegularMesh& as_is_mesh, const 
     return at_lambda;
   }
   if (r.psnr_db >= remeshed->psnr_db && r.total_bytes <= remeshed->total_bytes) {
-    at_lambda.better = true;
-    return at_lambda;
+    // The same quality from fewer vertices, where the input has more than that
+    // quality needs.
+    EncodeOptions same_quality = measured;
+    same_quality.target_psnr = r.psnr_db;
+    AsIsCandidate kept = WalkSimplified(as_is_mesh, same_quality, std::move(at_lambda));
+    kept.better = true;
+    return kept;
   }
   measured.target_psnr = remeshed->psnr_db;
-  AsIsCandidate at_quality = EncodeAsIs(as_is_mesh, measured);
+  AsIsCandidate at_quality = EncodeBestAsIs(as_is_mesh, measured);
   at_quality.better = at_quality.stream.ok() && at_quality.report.total_bytes <= remeshed->total_bytes;
   // Out of reach as is (a PSNR past its quantizer's finest step): the stream at
   // the lambda stands for the representation in the report.

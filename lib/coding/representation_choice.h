@@ -1,7 +1,7 @@
 // Which representation a mesh travels in: the remeshed normal mesh, or the input
 // itself coded as is (a stream with no refinement levels whose base is the input,
-// in the compact chunk's surface frames, compact_positions.h), with a target also
-// the input simplified (kSimplifyShare) and coded as is.
+// in the compact chunk's surface frames, compact_positions.h), or the input
+// simplified (kSimplifyShare) and coded as is.
 //
 // The normal-mesh codec wins where the input is dense next to its shape (scans,
 // sculpts: a few bits per input vertex reach 70 dB, the seed paper's regime). On a
@@ -37,7 +37,9 @@ inline constexpr double kAsIsMinPositionBits = 6.0;
 // The input as a semi-regular mesh with no levels (base = input).
 StatusOr<SemiRegularMesh> AsIsMesh(const Mesh& input, bool repair);
 
-// With a target, the as-is representation is also tried at fewer vertices
+// The as-is representation is also tried at fewer vertices, at the quality the
+// choice asks of it (a PSNR target, the remeshed stream's PSNR, or the as-is
+// stream's own at the caller's lambda; for a bpv target at the same rate)
 // (remesh/quadric_simplification.h): each try keeps this share of the last
 // one's vertices, while each beats the last (at most kMaxSimplifySteps times);
 // where the first does not, the share's square root is tried instead. A

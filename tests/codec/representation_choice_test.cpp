@@ -201,6 +201,40 @@ TEST(RepresentationChoice, IrregularMeshTravelsSimplifiedWhereThatIsSmaller) {
   EXPECT_GE(distance->psnr_db, 60.0);
 }
 
+// Without a target too: where the as-is stream at the caller's lambda wins, it
+// is simplified where that keeps its PSNR in fewer bytes.
+TEST(RepresentationChoice, WithoutATargetTheAsIsStreamIsSimplifiedToo) {
+  // A .glb primitive's default (a bare lambda, within the input's own triangle
+  // count, above a floor), on an irregular mesh with more vertices than its
+  // quality needs: the two-level normal mesh within that count is beaten by the
+  // input as is searched for its PSNR, and more so by the input simplified.
+  auto irregular = SimplifyByQuadrics(JitteredTorus(64, 32), 1500);
+  ASSERT_TRUE(irregular.ok());
+  const Mesh mesh = *irregular;
+  RemeshOptions two;
+  two.levels = 2;
+  auto normal_mesh = Remesh(mesh, two, nullptr);
+  ASSERT_TRUE(normal_mesh.ok());
+  EncodeOptions options = MeasuredAgainst(mesh);
+  options.lambda = 1.0;
+  options.measure_psnr = true;
+  options.max_triangles = mesh.faces.size();
+  RepresentationOptions allowed;
+  allowed.allow_as_is = true;
+  allowed.floor_db = 20.0;
+  EncodeReport report;
+  RepresentationReport choice;
+  auto stream = EncodeChoosingRepresentation(*normal_mesh, options, allowed, &report, nullptr, &choice);
+  ASSERT_TRUE(stream.ok()) << stream.status().ToString();
+  ASSERT_TRUE(choice.as_is);
+  EXPECT_LT(choice.as_is_vertices, mesh.positions.size());
+  EXPECT_LE(choice.as_is_bytes, choice.remeshed_bytes);
+  EXPECT_GE(choice.as_is_psnr_db, choice.remeshed_psnr_db);
+  auto decoded = Decode(stream->data(), stream->size());
+  ASSERT_TRUE(decoded.ok());
+  EXPECT_EQ(decoded->positions.size(), choice.as_is_vertices);
+}
+
 TEST(RepresentationChoice, ATargetNeitherReachesNamesTheBestOfEach) {
   const Mesh gem = Gem();
   const SemiRegularMesh normal_mesh = OneLevelRemesh(gem);
