@@ -191,7 +191,8 @@ class Simplifier {
         for (uint32_t w : t) {
           if (w == v) continue;
           auto& list = around_[w];
-          list.erase(std::find(list.begin(), list.end(), f));
+          const auto at = std::find(list.begin(), list.end(), f);
+          if (at != list.end()) list.erase(at);
         }
         continue;
       }

@@ -106,6 +106,31 @@ TEST(QuadricSimplification, SameInputSameResult) {
   EXPECT_EQ(a->faces, b->faces);
 }
 
+// Input the remesher's preparation would refuse (three faces on an edge, a
+// pinched vertex) is not its contract, but it must not break the simplifier:
+// every face of the result indexes a vertex of it.
+TEST(QuadricSimplification, NonManifoldInputStaysIndexable) {
+  Mesh fin = testing::MakeIcosphere(2);
+  const uint32_t a = fin.faces[0][0], b = fin.faces[0][1];
+  fin.positions.push_back(Vec3(3.0, 0.0, 0.0));
+  fin.faces.push_back({a, b, static_cast<uint32_t>(fin.positions.size() - 1)});
+  Mesh pinched = testing::MakeIcosphere(2);
+  const Mesh other = testing::MakeIcosphere(2);
+  const auto offset = static_cast<uint32_t>(pinched.positions.size());
+  for (const Vec3& p : other.positions) pinched.positions.push_back(p + Vec3(2.0, 0.0, 0.0));
+  for (Face f : other.faces) {
+    for (uint32_t& v : f) v = v == 0 ? 0 : v + offset;  // its vertex 0 is the first sphere's
+    pinched.faces.push_back(f);
+  }
+  for (const Mesh* mesh : {&fin, &pinched}) {
+    auto simplified = SimplifyByQuadrics(*mesh, 10);
+    ASSERT_TRUE(simplified.ok());
+    for (const Face& f : simplified->faces) {
+      for (uint32_t v : f) EXPECT_LT(v, simplified->positions.size());
+    }
+  }
+}
+
 TEST(QuadricSimplification, RefusesBadInput) {
   Mesh bad = testing::MakeIcosphere(1);
   bad.faces[3][1] = 1000;
