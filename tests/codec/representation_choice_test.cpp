@@ -56,6 +56,21 @@ EncodeOptions MeasuredAgainst(const Mesh& original) {
   return options;
 }
 
+// A .glb primitive's default: a bare lambda, measured within the input's own
+// triangle count, above a floor, the input allowed to travel as is.
+struct GlbDefault {
+  EncodeOptions options;
+  RepresentationOptions allowed;
+};
+GlbDefault GlbDefaultFor(const Mesh& mesh) {
+  GlbDefault d{MeasuredAgainst(mesh), RepresentationOptions()};
+  d.options.measure_psnr = true;
+  d.options.max_triangles = mesh.faces.size();
+  d.allowed.allow_as_is = true;
+  d.allowed.floor_db = 20.0;
+  return d;
+}
+
 EncodeOptions PsnrTarget(const Mesh& gem, double psnr) {
   EncodeOptions options = MeasuredAgainst(gem);
   options.target_psnr = psnr;
@@ -215,16 +230,11 @@ TEST(RepresentationChoice, WithoutATargetTheAsIsStreamIsSimplifiedToo) {
   two.levels = 2;
   auto normal_mesh = Remesh(mesh, two, nullptr);
   ASSERT_TRUE(normal_mesh.ok());
-  EncodeOptions options = MeasuredAgainst(mesh);
-  options.lambda = 1.0;
-  options.measure_psnr = true;
-  options.max_triangles = mesh.faces.size();
-  RepresentationOptions allowed;
-  allowed.allow_as_is = true;
-  allowed.floor_db = 20.0;
+  GlbDefault glb = GlbDefaultFor(mesh);
+  glb.options.lambda = 1.0;
   EncodeReport report;
   RepresentationReport choice;
-  auto stream = EncodeChoosingRepresentation(*normal_mesh, options, allowed, &report, nullptr, &choice);
+  auto stream = EncodeChoosingRepresentation(*normal_mesh, glb.options, glb.allowed, &report, nullptr, &choice);
   ASSERT_TRUE(stream.ok()) << stream.status().ToString();
   ASSERT_TRUE(choice.as_is);
   EXPECT_LT(choice.as_is_vertices, mesh.positions.size());
@@ -270,12 +280,7 @@ TEST(RepresentationChoice, WithoutATargetAsIsReplacesAStreamItBeatsOnBothCounts)
   const Mesh gem = Gem();
   const SemiRegularMesh normal_mesh = OneLevelRemesh(gem);
   ASSERT_FALSE(normal_mesh.positions.empty());
-  EncodeOptions options = MeasuredAgainst(gem);
-  options.measure_psnr = true;
-  options.max_triangles = gem.faces.size();
-  RepresentationOptions allowed;
-  allowed.allow_as_is = true;
-  allowed.floor_db = 20.0;
+  auto [options, allowed] = GlbDefaultFor(gem);
   RepresentationReport choice;
   EncodeReport report;
   auto stream = EncodeChoosingRepresentation(normal_mesh, options, allowed, &report, nullptr, &choice);
