@@ -13,6 +13,18 @@
 #include "remesh/remesh.h"
 
 namespace eqmesh {
+namespace {
+
+// `surface` as a semi-regular mesh with no levels: its base.
+StatusOr<SemiRegularMesh> WithoutLevels(Mesh surface) {
+  SemiRegularMesh out;
+  EQMESH_ASSIGN_OR_RETURN(out.hierarchy, SemiRegularHierarchy::Build(static_cast<uint32_t>(surface.positions.size()),
+                                                                     std::move(surface.faces), 0));
+  out.positions = std::move(surface.positions);
+  return out;
+}
+
+}  // namespace
 
 StatusOr<SemiRegularMesh> AsIsMesh(const Mesh& input, bool repair) {
   // The remesher's preparation (unreferenced vertices dropped, manifold checks or
@@ -26,23 +38,12 @@ StatusOr<SemiRegularMesh> AsIsMesh(const Mesh& input, bool repair) {
   RemeshReport report;
   EQMESH_ASSIGN_OR_RETURN(SemiRegularMesh mesh, Remesh(input, options, &report));
   if (mesh.kept_exactly.faces.empty()) return mesh;
-  Mesh base;
-  base.positions = std::move(mesh.positions);
-  base.faces = mesh.hierarchy.BaseFaces();
-  AppendKeptComponents(mesh.kept_exactly, &base);
-  SemiRegularMesh out;
-  EQMESH_ASSIGN_OR_RETURN(out.hierarchy, SemiRegularHierarchy::Build(static_cast<uint32_t>(base.positions.size()),
-                                                                     std::move(base.faces), 0));
-  out.positions = std::move(base.positions);
-  return out;
+  return WithoutLevels(ExtractLevel(std::move(mesh), 0));  // the kept components appended to the base
 }
 
 bool AsIsFitsIn(const SemiRegularMesh& as_is, size_t bytes) {
   const double vertices = static_cast<double>(as_is.positions.size());
-  Mesh surface;
-  surface.positions = as_is.positions;
-  surface.faces = as_is.hierarchy.BaseFaces();
-  const auto connectivity = CompactConnectivityBytes(surface);
+  const auto connectivity = CompactConnectivityBytes(ExtractLevel(as_is, 0));
   // A mesh the compact chunk cannot hold goes to Draco: about 3 bits per vertex.
   const double connectivity_bits = connectivity.ok() ? 8.0 * static_cast<double>(*connectivity) : 3.0 * vertices;
   return 8.0 * static_cast<double>(bytes) >= connectivity_bits + kAsIsMinPositionBits * vertices;
@@ -115,19 +116,13 @@ AsIsCandidate EncodeAsIs(const SemiRegularMesh& as_is_mesh, const EncodeOptions&
 // The as-is mesh simplified to `share` of its vertices (none: the
 // simplification stopped short of one vertex fewer).
 std::optional<SemiRegularMesh> SimplifiedAsIs(const SemiRegularMesh& as_is, double share) {
-  Mesh surface;
-  surface.positions = as_is.positions;
-  surface.faces = as_is.hierarchy.BaseFaces();
-  const auto target = static_cast<size_t>(std::llround(share * static_cast<double>(surface.positions.size())));
-  auto simplified = SimplifyByQuadrics(surface, target);
-  if (!simplified.ok() || simplified->positions.size() >= surface.positions.size()) return std::nullopt;
-  SemiRegularMesh out;
-  auto hierarchy = SemiRegularHierarchy::Build(static_cast<uint32_t>(simplified->positions.size()),
-                                               std::move(simplified->faces), 0);
-  if (!hierarchy.ok()) return std::nullopt;
-  out.hierarchy = std::move(*hierarchy);
-  out.positions = std::move(simplified->positions);
-  return out;
+  const size_t n = as_is.positions.size();
+  const auto target = static_cast<size_t>(std::llround(share * static_cast<double>(n)));
+  auto simplified = SimplifyByQuadrics(ExtractLevel(as_is, 0), target);
+  if (!simplified.ok() || simplified->positions.size() >= n) return std::nullopt;
+  auto out = WithoutLevels(std::move(simplified).value());
+  if (!out.ok()) return std::nullopt;
+  return std::move(out).value();
 }
 
 // Whether `a` replaces `b` among as-is candidates for a target.

@@ -297,13 +297,17 @@ StatusOr<TriangleBvh> TriangleBvh::Build(const Mesh& mesh) {
     tasks.push_back({left, task.begin, mid, task.depth + 1});
   }
 
-  bvh.triangles_.resize(n);
   bvh.face_ids_ = std::move(order);
-  for (uint32_t i = 0; i < n; ++i) {
-    const Face& f = mesh.faces[bvh.face_ids_[i]];
-    bvh.triangles_[i] = {mesh.positions[f[0]], mesh.positions[f[1]], mesh.positions[f[2]]};
-  }
+  bvh.LoadCorners(mesh);
   return bvh;
+}
+
+void TriangleBvh::LoadCorners(const Mesh& mesh) {
+  triangles_.resize(face_ids_.size());
+  for (size_t i = 0; i < face_ids_.size(); ++i) {
+    const Face& f = mesh.faces[face_ids_[i]];
+    triangles_[i] = {mesh.positions[f[0]], mesh.positions[f[1]], mesh.positions[f[2]]};
+  }
 }
 
 Status TriangleBvh::Refit(const Mesh& mesh) {
@@ -312,10 +316,9 @@ Status TriangleBvh::Refit(const Mesh& mesh) {
     return InvalidArgument("refit: " + std::to_string(mesh.faces.size()) + " faces, the tree has " +
                            std::to_string(face_ids_.size()));
   }
+  LoadCorners(mesh);
   Box all;
   for (size_t i = 0; i < triangles_.size(); ++i) {
-    const Face& f = mesh.faces[face_ids_[i]];
-    triangles_[i] = {mesh.positions[f[0]], mesh.positions[f[1]], mesh.positions[f[2]]};
     all.Grow(triangles_[i].v0);
     all.Grow(triangles_[i].v1);
     all.Grow(triangles_[i].v2);

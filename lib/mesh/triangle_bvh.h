@@ -96,6 +96,8 @@ class TriangleBvh {
   };
 
  private:
+  // triangles_[i] = the corners of mesh face face_ids_[i].
+  void LoadCorners(const Mesh& mesh);
   template <typename Filter>
   ClosestPointResult ClosestPointImpl(const Vec3& p, double max_dist, const Filter& filter) const;
   template <typename Visit>

@@ -11,6 +11,8 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "mesh/mesh_topology.h"
+
 namespace eqmesh {
 namespace {
 
@@ -45,7 +47,7 @@ class Simplifier {
       for (uint32_t v : faces_[f]) around_[v].push_back(f);
       AddPlaneQuadric(f);
     }
-    MarkBoundary();
+    MarkBoundary(mesh);
   }
 
   void Run(size_t target) {
@@ -96,23 +98,11 @@ class Simplifier {
   }
 
   // Vertices on an edge with one face.
-  void MarkBoundary() {
-    std::vector<std::pair<uint64_t, int>> edges;
-    for (const Face& t : faces_) {
-      for (int i = 0; i < 3; ++i) {
-        const uint32_t a = std::min(t[i], t[(i + 1) % 3]), b = std::max(t[i], t[(i + 1) % 3]);
-        edges.push_back({(uint64_t{a} << 32) | b, 1});
-      }
-    }
-    std::sort(edges.begin(), edges.end());
-    for (size_t i = 0; i < edges.size();) {
-      size_t j = i;
-      while (j < edges.size() && edges[j].first == edges[i].first) ++j;
-      if (j - i == 1) {
-        boundary_[edges[i].first >> 32] = 1;
-        boundary_[edges[i].first & 0xffffffffu] = 1;
-      }
-      i = j;
+  void MarkBoundary(const Mesh& mesh) {
+    const MeshTopology topology(mesh);
+    for (uint32_t e = 0; e < topology.num_edges(); ++e) {
+      if (!topology.IsBoundaryEdge(e)) continue;
+      for (uint32_t v : topology.EdgeVertices(e)) boundary_[v] = 1;
     }
   }
 
