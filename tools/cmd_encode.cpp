@@ -54,6 +54,7 @@ struct Source {
   SemiRegularMesh remeshed;
   std::optional<Mesh> original;
   RemeshReport remesh;
+  RemeshOptions remesh_options;  // of `remeshed` (none for a .srm input)
   double remesh_seconds = 0;
 };
 
@@ -108,6 +109,7 @@ nlohmann::json ToJson(const EncodeArgs& a, const RemeshReport& remesh, const Enc
   j["base_vertices"] = choice.as_is ? choice.as_is_vertices : remesh.base_vertices;
   j["semi_regular_vertices"] = choice.as_is ? choice.as_is_vertices : remesh.output_vertices;
   j["remesh_levels"] = remesh.levels;
+  if (!choice.base_sizes_tried.empty()) j["base_sizes_tried"] = choice.base_sizes_tried;
   j["levels"] = r.level_bytes.size();
   j["level_search"] = nlohmann::json::array();
   for (const LevelCountTrial& t : search.trials) {
@@ -248,6 +250,7 @@ StatusOr<Source> RemeshInput(const EncodeArgs& a) {
   ClearTerminalProgress(options.progress);
   if (!remeshed.ok()) return remeshed.status().WithContext(a.in_path);
   src.remesh_seconds = SecondsSince(start);
+  src.remesh_options = options;
   src.remeshed = std::move(*remeshed);
   src.original = std::move(mesh);
   return src;
@@ -304,7 +307,9 @@ int RunEncode(int argc, char** argv) {
                  "on them; default 4 lifted, 2 unlifted)")
       ->check(CLI::Range(1e-6, 1e6));
   app.add_option("--levels", a.levels, "subdivision levels (-1: automatic)")->check(CLI::Range(-1, 10));
-  app.add_option("--base-vertices", a.base_vertices, "base mesh size to aim for (-1: automatic)")
+  app.add_option("--base-vertices", a.base_vertices,
+                 "base mesh size to aim for (-1: automatic; with --psnr or --bpv the encoder also tries twice and "
+                 "half the remesher's size, and further while each does better)")
       ->check(CLI::Range(-1, 1 << 30));
   app.add_flag("--repair", a.repair, "repair non-manifold / misoriented input instead of refusing it");
   app.add_flag("--draco-base", a.draco_base,
@@ -365,13 +370,14 @@ int RunEncode(int argc, char** argv) {
   RepresentationOptions representation;
   representation.allow_as_is = !srm_input && a.levels < 0 && a.base_vertices < 0;
   representation.repair = a.repair;
+  if (representation.allow_as_is) representation.remesh = &source->remesh_options;
   auto bytes = EncodeChoosingRepresentation(source->remeshed, options, representation, &report, &search, &choice);
   ClearTerminalProgress(options.progress);
   if (!bytes.ok()) return Fail(kName, a.in_path + ": " + bytes.status().message());
   const double encode_seconds = SecondsSince(encode_start);
   const Status written = WriteFileAtomically(a.out_path, *bytes);
   if (!written.ok()) return Fail(kName, written.message());
-  const RemeshReport& remesh_report = source->remesh;
+  const RemeshReport& remesh_report = choice.walked_remesh ? *choice.walked_remesh : source->remesh;
   const double remesh_seconds = source->remesh_seconds;
 
   // Sizes jump between adjacent settings on small meshes; say so rather than
@@ -391,7 +397,9 @@ int RunEncode(int argc, char** argv) {
                                   ? "the input simplified to " + std::to_string(choice.as_is_vertices) +
                                         " vertices, coded as is"
                                   : std::string("the input coded as is");
-    const std::string shape = !choice.as_is              ? std::to_string(report.level_bytes.size()) + " levels"
+    const std::string levels = std::to_string(report.level_bytes.size()) + " levels over a " +
+                               std::to_string(choice.remeshed_base_vertices) + "-vertex base";
+    const std::string shape = !choice.as_is              ? levels
                               : choice.remeshed_bytes > 0 ? as_is + " (" + std::to_string(choice.remeshed_bytes) +
                                                                 " bytes as a normal mesh)"
                               : choice.nothing_remeshed   ? as_is + " (too small to remesh)"

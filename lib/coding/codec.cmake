@@ -31,6 +31,7 @@ add_library(eqmesh_encoder STATIC
   ${EQMESH_CODEC_DIR}/encoder.cpp
   ${EQMESH_CODEC_DIR}/level_count_search.cpp
   ${EQMESH_CODEC_DIR}/representation_choice.cpp
+  ${EQMESH_CODEC_DIR}/base_size_walk.cpp
   ${EQMESH_CODEC_DIR}/stream_psnr.cpp
   ${EQMESH_CODEC_DIR}/rate_control.cpp)
 target_link_libraries(eqmesh_encoder PUBLIC eqmesh_decoder eqmesh_eq_encoder eqmesh_threads PRIVATE draco::draco)

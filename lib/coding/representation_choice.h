@@ -18,6 +18,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "coding/encoder.h"
@@ -25,6 +26,7 @@
 #include "core/status.h"
 #include "mesh/mesh.h"
 #include "mesh/semi_regular.h"
+#include "remesh/remesh.h"
 
 namespace eqmesh {
 
@@ -62,6 +64,11 @@ struct RepresentationReport {
   size_t as_is_bytes = 0;        // 0 when not tried or failed
   double as_is_psnr_db = 0;
   size_t as_is_vertices = 0;     // of that stream: fewer than the input's when simplified
+  // Base vertices of the normal-mesh stream compared (another than the remesh
+  // given's where the base-size walk found a better one), and the sizes it tried.
+  size_t remeshed_base_vertices = 0;
+  std::vector<size_t> base_sizes_tried;
+  std::optional<RemeshReport> walked_remesh;  // the remesh of that other base
 };
 
 struct RepresentationOptions {
@@ -73,6 +80,10 @@ struct RepresentationOptions {
   // --min-psnr; 0: none) gives way to an as-is stream of higher PSNR at the same
   // lambda, whatever its size.
   double floor_db = 0;
+  // The options the remesh given came from, where its base size is the
+  // encoder's to choose: with a target, other base sizes are tried
+  // (base_size_walk.h). Null: the remesh given is the normal mesh coded.
+  const RemeshOptions* remesh = nullptr;
 };
 
 // EncodeChoosingLevels(remeshed) and, where allowed and options.original is set,

@@ -66,6 +66,7 @@ StatusOr<CompressedGeometry> CompressWithEqmesh(const ConvertOptions& options, c
   representation.allow_as_is = !textured && remesh.levels < 0 && remesh.base_vertices < 0;
   representation.repair = remesh.repair;
   representation.floor_db = options.min_psnr;
+  if (representation.allow_as_is) representation.remesh = &remesh;
   RepresentationReport choice;
   auto stream = EncodeChoosingRepresentation(remeshed, codec, representation, &encode_report, nullptr, &choice);
   const bool floor_missed = stream.ok() && options.min_psnr > 0 && encode_report.psnr_db < options.min_psnr;
