@@ -8,12 +8,15 @@ namespace eqmesh {
 namespace {
 
 // A PSNR target's search at another base starts at the lambda the best try
-// ended on: near its answer, and where quality is monotone in lambda the answer
-// does not depend on the start. A rate target's search, which takes the first
-// stream within tolerance, starts as asked.
+// ended on (near its answer; where quality is monotone in lambda the answer
+// does not depend on the start) and gives up once it shows it cannot come in
+// under the best (EncodeOptions::outbid_bytes). A rate target's search, which
+// takes the first stream within tolerance, starts as asked.
 EncodeOptions StartingFrom(const EncodeOptions& options, const BaseSizeTry& best) {
   EncodeOptions o = options;
-  if (options.target_psnr > 0 && best.stream.ok() && best.report.lambda > 0) o.lambda = best.report.lambda;
+  if (options.target_psnr <= 0 || !best.stream.ok()) return o;
+  if (best.report.lambda > 0) o.lambda = best.report.lambda;
+  o.outbid_bytes = best.stream->size();
   return o;
 }
 

@@ -398,6 +398,14 @@ StatusOr<Pass> EncodeZerotreeToBudget(const Prepared& prep, const EncodeOptions&
 constexpr uint64_t kSearchSamples = 200'000;
 constexpr double kSearchMarginDb = 0.05;
 
+// Whether `pass` (searched for a PSNR target) shows that no stream meeting the
+// target is smaller than options.outbid_bytes: it misses the search's aim with
+// at least that many bytes.
+bool Outbid(const EncodeOptions& options, const Pass& pass) {
+  return options.outbid_bytes > 0 && pass.report.psnr_db < options.target_psnr + kSearchMarginDb &&
+         pass.bytes.size() >= options.outbid_bytes;
+}
+
 // The search's choice, measured at the default sample count; in the rare case
 // that it then misses the target, the smallest other pass that meets it (none:
 // the best one tried). Without options.verify_target, the choice as searched.
@@ -516,6 +524,7 @@ RateEvaluator RecordingEvaluator(const Prepared& prep, const EncodeOptions& opti
     if (measure) {
       EQMESH_ASSIGN_OR_RETURN(point.psnr_db, MeasureEncodedPsnr(pass.bytes, options, kSearchSamples));
       pass.report.psnr_db = point.psnr_db;
+      if (Outbid(options, pass)) return Status(StatusCode::kOutbid, "a stream of this mesh meeting the target is larger");
     }
     passes->push_back(std::move(pass));
     return point;

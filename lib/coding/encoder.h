@@ -81,6 +81,12 @@ struct EncodeOptions {
   // False returns the search's choice as measured: for a caller that compares
   // several such streams and verifies only the one it keeps (the level search).
   bool verify_target = true;
+  // PSNR target, for a candidate that only matters if it is smaller than a
+  // stream of this many bytes (0: none): a searched pass that misses the target
+  // in at least as many bytes ends the encode with kOutbid, since where quality
+  // and size grow together with lambda no stream meeting the target is smaller.
+  // (The walks over base sizes and simplified as-is meshes: most tries lose.)
+  size_t outbid_bytes = 0;
   // Code the base with Draco (streams version 1.1 decoders read) instead of the
   // compact base chunk (format 1.2, compact_base/): it costs the bunny 0.5 dB at 0.25 bpv.
   bool draco_base = false;

@@ -74,6 +74,7 @@ StatusOr<Candidate> ScanLevels(const SemiRegularMesh& mesh, const EncodeOptions&
   Candidate best, previous;
   bool have_best = false, have_previous = false;
   bool some_ceiling_reaches = false;
+  bool outbid = false;
   for (int k = top > 0 ? 1 : 0; k <= top; ++k) {
     ReportProgress(options.progress, "levels " + std::to_string(k) + "/" + std::to_string(top),
                    static_cast<double>(k) / static_cast<double>(top + 1));
@@ -98,7 +99,17 @@ StatusOr<Candidate> ScanLevels(const SemiRegularMesh& mesh, const EncodeOptions&
     // where it starts where quality is monotone in lambda; a rate target's, which
     // takes the first stream within tolerance, would, so it starts as asked.)
     const double start = options.target_psnr > 0 && have_previous ? previous.report.lambda : 0.0;
-    EQMESH_ASSIGN_OR_RETURN(Candidate c, EncodeTruncated(mesh, k, options, start));
+    StatusOr<Candidate> coded = EncodeTruncated(mesh, k, options, start);
+    if (!coded.ok() && coded.status().code() == StatusCode::kOutbid) {
+      // No stream of this count beats the bound (EncodeOptions::outbid_bytes).
+      // Past a count that does, this one is the larger and the scan stops, as
+      // its rule says; before one, the next count may still beat it.
+      out->trials.push_back({k, 0.0, 0.0, 0, false, true});
+      outbid = true;
+      if (have_best && best.bytes.size() < options.outbid_bytes) break;
+      continue;
+    }
+    EQMESH_ASSIGN_OR_RETURN(Candidate c, std::move(coded));
     const bool feasible = options.target_psnr <= 0 || c.report.psnr_db >= options.target_psnr;
     out->trials.push_back({k, c.report.bpv, c.report.psnr_db, c.bytes.size(), feasible});
     const bool stop = have_previous && worse(c, previous);
@@ -111,6 +122,7 @@ StatusOr<Candidate> ScanLevels(const SemiRegularMesh& mesh, const EncodeOptions&
     previous = std::move(c);
     have_previous = true;
   }
+  if (!have_best && outbid) return Status(StatusCode::kOutbid, "no level count beats the stream it competes with");
   if (!have_best) {
     double closest = 0.0;
     for (const LevelCountTrial& t : out->trials) closest = std::max(closest, t.psnr_db);

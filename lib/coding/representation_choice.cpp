@@ -133,12 +133,15 @@ bool BeatsForTarget(const EncodeOptions& options, const AsIsCandidate& a, const 
 }
 
 // A PSNR target's search for a simplified mesh starts at the lambda the best
-// candidate so far ended on: near its answer, and where quality is monotone in
-// lambda the answer does not depend on the start. (A rate target's does: it
-// takes the first stream within tolerance, so it starts as asked.)
+// candidate so far ended on (near its answer; where quality is monotone in
+// lambda the answer does not depend on the start) and gives up once it shows it
+// cannot come in under the best (EncodeOptions::outbid_bytes). (A rate target's
+// search takes the first stream within tolerance, so it starts as asked.)
 EncodeOptions From(const EncodeOptions& options, const AsIsCandidate& best) {
   EncodeOptions o = options;
-  if (options.target_psnr > 0 && best.stream.ok() && best.report.lambda > 0) o.lambda = best.report.lambda;
+  if (options.target_psnr <= 0 || !best.stream.ok()) return o;
+  if (best.report.lambda > 0) o.lambda = best.report.lambda;
+  o.outbid_bytes = best.stream->size();
   return o;
 }
 

@@ -22,6 +22,7 @@ enum class StatusCode {
   kResourceLimit,        // a declared count exceeds what we agree to allocate
   kInternal,             // a bug: an invariant of our own code failed
   kTargetOutOfReach,     // a quality target the input cannot meet (says the best reached)
+  kOutbid,               // a candidate stream given up: it cannot beat the one it competes with
 };
 
 const char* StatusCodeName(StatusCode code);
@@ -95,6 +96,7 @@ inline const char* StatusCodeName(StatusCode code) {
     case StatusCode::kResourceLimit: return "RESOURCE_LIMIT";
     case StatusCode::kInternal: return "INTERNAL";
     case StatusCode::kTargetOutOfReach: return "TARGET_OUT_OF_REACH";
+    case StatusCode::kOutbid: return "OUTBID";
   }
   return "UNKNOWN";
 }

@@ -89,5 +89,29 @@ TEST(LevelCount, PsnrTargetGivesTheSmallestStreamThatMeetsIt) {
   EXPECT_TRUE(levels.trials.back().coded);
 }
 
+// A bound (EncodeOptions::outbid_bytes) changes nothing for a search whose
+// answer is smaller than it, and gives the search up (kOutbid, no stream) once
+// a pass misses the target in at least that many bytes: here every pass that
+// misses does, against a bound of one byte.
+TEST(LevelCount, APsnrSearchGivesUpOnlyWhereItCannotBeatItsBound) {
+  const SemiRegularMesh mesh = MakeBumpySphere(4);
+  const Mesh original = Finest(mesh);
+  EncodeOptions options;
+  options.input_vertices = original.positions.size();
+  options.original = &original;
+  options.target_psnr = 50.0;
+  options.psnr_samples = 50'000;
+  auto free = EncodeChoosingLevels(mesh, options, nullptr, nullptr);
+  ASSERT_TRUE(free.ok()) << free.status().message();
+  options.outbid_bytes = free->size() + 1;
+  auto bounded = EncodeChoosingLevels(mesh, options, nullptr, nullptr);
+  ASSERT_TRUE(bounded.ok()) << bounded.status().message();
+  EXPECT_EQ(*bounded, *free);
+  options.outbid_bytes = 1;
+  auto outbid = EncodeChoosingLevels(mesh, options, nullptr, nullptr);
+  ASSERT_FALSE(outbid.ok());
+  EXPECT_EQ(outbid.status().code(), StatusCode::kOutbid) << outbid.status().message();
+}
+
 }  // namespace
 }  // namespace eqmesh
