@@ -7,17 +7,8 @@
 namespace eqmesh {
 namespace {
 
-// A PSNR target's search at another base starts at the lambda the best try
-// ended on (near its answer; where quality is monotone in lambda the answer
-// does not depend on the start) and gives up once it shows it cannot come in
-// under the best (EncodeOptions::outbid_bytes). A rate target's search, which
-// takes the first stream within tolerance, starts as asked.
 EncodeOptions StartingFrom(const EncodeOptions& options, const BaseSizeTry& best) {
-  EncodeOptions o = options;
-  if (options.target_psnr <= 0 || !best.stream.ok()) return o;
-  if (best.report.lambda > 0) o.lambda = best.report.lambda;
-  o.outbid_bytes = best.stream->size();
-  return o;
+  return best.stream.ok() ? ToBeat(options, best.stream->size(), best.report.lambda) : options;
 }
 
 BaseSizeTry EncodeAtBaseSize(const Mesh& input, RemeshOptions remesh, const EncodeOptions& options,
@@ -44,6 +35,14 @@ size_t StepFrom(size_t from, double factor, size_t input_vertices) {
 }
 
 }  // namespace
+
+EncodeOptions ToBeat(const EncodeOptions& options, size_t best_bytes, double best_lambda) {
+  EncodeOptions o = options;
+  if (options.target_psnr <= 0) return o;
+  if (best_lambda > 0) o.lambda = best_lambda;
+  o.outbid_bytes = best_bytes;
+  return o;
+}
 
 bool BeatsAtTarget(const EncodeOptions& options, const BaseSizeTry& a, const BaseSizeTry& b) {
   if (!a.stream.ok()) return false;

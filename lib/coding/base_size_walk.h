@@ -44,6 +44,15 @@ inline constexpr size_t kMinInputPerBaseVertex = 4;
 // whole encode (horse, 48,485 vertices, gained nothing at 72-290 base vertices).
 inline constexpr size_t kBaseWalkMaxInputVertices = 60'000;
 
+// The options for a try that competes with a best stream of `best_bytes` bytes
+// found at `best_lambda`, for the same target: a PSNR target's search starts at
+// that lambda (near its answer; where quality is monotone in lambda the answer
+// does not depend on the start) and gives up once it shows it cannot come in
+// under the best (EncodeOptions::outbid_bytes). A rate target's search, which
+// takes the first stream within tolerance, starts as asked. Used by this walk
+// and by the simplified as-is walk (representation_choice.h).
+EncodeOptions ToBeat(const EncodeOptions& options, size_t best_bytes, double best_lambda);
+
 struct BaseSizeTry {
   size_t base_vertices = 0;
   RemeshReport remesh;  // of a try's remesh (not filled for the first)

@@ -132,17 +132,9 @@ bool BeatsForTarget(const EncodeOptions& options, const AsIsCandidate& a, const 
   return !b.stream.ok() || AsIsIsBetter(options, b.report, a.report);
 }
 
-// A PSNR target's search for a simplified mesh starts at the lambda the best
-// candidate so far ended on (near its answer; where quality is monotone in
-// lambda the answer does not depend on the start) and gives up once it shows it
-// cannot come in under the best (EncodeOptions::outbid_bytes). (A rate target's
-// search takes the first stream within tolerance, so it starts as asked.)
+// The options for a simplified try against the best so far (ToBeat).
 EncodeOptions From(const EncodeOptions& options, const AsIsCandidate& best) {
-  EncodeOptions o = options;
-  if (options.target_psnr <= 0 || !best.stream.ok()) return o;
-  if (best.report.lambda > 0) o.lambda = best.report.lambda;
-  o.outbid_bytes = best.stream->size();
-  return o;
+  return best.stream.ok() ? ToBeat(options, best.stream->size(), best.report.lambda) : options;
 }
 
 // With a target: `best` (the input as is, coded for it), then the input

@@ -29,11 +29,14 @@ Mesh RidgedSphere() {
   return m;
 }
 
-EncodeOptions TargetAgainst(const Mesh& original) {
+// A target against `original` at 20k samples (the walk, not the meter's
+// precision, is under test): `psnr` dB, or with psnr 0 none.
+EncodeOptions TargetAgainst(const Mesh& original, double psnr = 0) {
   EncodeOptions options;
   options.original = &original;
   options.input_vertices = original.positions.size();
   options.psnr_samples = 20'000;
+  options.target_psnr = psnr;
   return options;
 }
 
@@ -61,8 +64,7 @@ double DecodedPsnr(const Mesh& original, const std::vector<uint8_t>& stream) {
 
 TEST(BaseSizeWalk, NeverLargerThanTheRemeshersBaseAndMeetsThePsnrTarget) {
   const Mesh input = RidgedSphere();
-  EncodeOptions options = TargetAgainst(input);
-  options.target_psnr = 50.0;
+  const EncodeOptions options = TargetAgainst(input, 50.0);
   const RemeshOptions remesh;
   BaseSizeTry first = FirstTry(input, remesh, options);
   ASSERT_TRUE(first.stream.ok()) << first.stream.status().ToString();
@@ -84,8 +86,7 @@ TEST(BaseSizeWalk, NeverLargerThanTheRemeshersBaseAndMeetsThePsnrTarget) {
 
 TEST(BaseSizeWalk, IsDeterministic) {
   const Mesh input = RidgedSphere();
-  EncodeOptions options = TargetAgainst(input);
-  options.target_psnr = 50.0;
+  const EncodeOptions options = TargetAgainst(input, 50.0);
   const RemeshOptions remesh;
   const BaseSizeTry a = WalkBaseSizes(input, remesh, options, FirstTry(input, remesh, options));
   const BaseSizeTry b = WalkBaseSizes(input, remesh, options, FirstTry(input, remesh, options));
@@ -130,6 +131,19 @@ TEST(BaseSizeWalk, ATryReplacesOnlyWhatItBeatsAtTheTarget) {
   EXPECT_FALSE(BeatsAtTarget(psnr, small, small));  // a tie keeps the first
 }
 
+TEST(BaseSizeWalk, ATryAtAPsnrTargetStartsAtTheBestsLambdaAndIsBoundByItsBytes) {
+  EncodeOptions psnr;
+  psnr.target_psnr = 60.0;
+  const EncodeOptions bounded = ToBeat(psnr, 1234, 0.25);
+  EXPECT_EQ(bounded.outbid_bytes, 1234u);
+  EXPECT_EQ(bounded.lambda, 0.25);
+  EncodeOptions rate;
+  rate.target_bpv = 1.0;
+  const EncodeOptions as_asked = ToBeat(rate, 1234, 0.25);
+  EXPECT_EQ(as_asked.outbid_bytes, 0u);
+  EXPECT_EQ(as_asked.lambda, rate.lambda);
+}
+
 TEST(BaseSizeWalk, RunsOnlyWithATargetOnAMidSizeInput) {
   const Mesh input = RidgedSphere();
   EncodeOptions options = TargetAgainst(input);
@@ -146,8 +160,7 @@ TEST(BaseSizeWalk, RunsOnlyWithATargetOnAMidSizeInput) {
 
 TEST(BaseSizeWalk, TheRepresentationChoiceWalksOnlyWhereItMayChooseTheRemesh) {
   const Mesh input = RidgedSphere();
-  EncodeOptions options = TargetAgainst(input);
-  options.target_psnr = 50.0;
+  const EncodeOptions options = TargetAgainst(input, 50.0);
   const RemeshOptions remesh;
   RemeshReport report;
   auto remeshed = Remesh(input, remesh, &report);

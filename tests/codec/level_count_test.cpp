@@ -58,14 +58,21 @@ TEST(LevelCount, WithoutTargetEveryLevelIsCoded) {
   EXPECT_TRUE(levels.trials.empty());
 }
 
-TEST(LevelCount, PsnrTargetGivesTheSmallestStreamThatMeetsIt) {
-  const SemiRegularMesh mesh = MakeBumpySphere(4);
-  const Mesh original = Finest(mesh);
+// A 50 dB target against `original` at 50k samples: the search's logic, not the
+// meter's precision, is under test.
+EncodeOptions Psnr50Against(const Mesh& original) {
   EncodeOptions options;
   options.input_vertices = original.positions.size();
   options.original = &original;
   options.target_psnr = 50.0;
-  options.psnr_samples = 50'000;  // the search's logic, not the meter's precision, is under test
+  options.psnr_samples = 50'000;
+  return options;
+}
+
+TEST(LevelCount, PsnrTargetGivesTheSmallestStreamThatMeetsIt) {
+  const SemiRegularMesh mesh = MakeBumpySphere(4);
+  const Mesh original = Finest(mesh);
+  const EncodeOptions options = Psnr50Against(original);
   EncodeReport report;
   LevelCountReport levels;
   auto bytes = EncodeChoosingLevels(mesh, options, &report, &levels);
@@ -96,11 +103,7 @@ TEST(LevelCount, PsnrTargetGivesTheSmallestStreamThatMeetsIt) {
 TEST(LevelCount, APsnrSearchGivesUpOnlyWhereItCannotBeatItsBound) {
   const SemiRegularMesh mesh = MakeBumpySphere(4);
   const Mesh original = Finest(mesh);
-  EncodeOptions options;
-  options.input_vertices = original.positions.size();
-  options.original = &original;
-  options.target_psnr = 50.0;
-  options.psnr_samples = 50'000;
+  EncodeOptions options = Psnr50Against(original);
   auto free = EncodeChoosingLevels(mesh, options, nullptr, nullptr);
   ASSERT_TRUE(free.ok()) << free.status().message();
   options.outbid_bytes = free->size() + 1;
