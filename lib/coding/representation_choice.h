@@ -86,9 +86,10 @@ struct RepresentationOptions {
   const RemeshOptions* remesh = nullptr;
 };
 
-// EncodeChoosingLevels(remeshed) and, where allowed and options.original is set,
-// the input coded as is, where the remeshed stream's bytes leave room for the
-// connectivity and kAsIsMinPositionBits per vertex, or it falls short of its
+// EncodeChoosingLevels(remeshed) (with representation.remesh and a target, the
+// best of the base-size walk from it, base_size_walk.h) and, where allowed and
+// options.original is set, the input coded as is, where remeshed's own stream's
+// bytes leave room for the connectivity and kAsIsMinPositionBits per vertex, or it falls short of its
 // target, or nothing was remeshed (then the input as is is the only stream);
 // returns the better. With a PSNR target the smaller meeting it, with a bpv
 // target the higher PSNR (both: the input as is or simplified, whichever of
