@@ -7,10 +7,6 @@
 namespace eqmesh {
 namespace {
 
-EncodeOptions StartingFrom(const EncodeOptions& options, const BaseSizeTry& best) {
-  return best.stream.ok() ? ToBeat(options, best.stream->size(), best.report.lambda) : options;
-}
-
 BaseSizeTry EncodeAtBaseSize(const Mesh& input, RemeshOptions remesh, const EncodeOptions& options,
                              size_t base_vertices) {
   BaseSizeTry t;
@@ -36,11 +32,12 @@ size_t StepFrom(size_t from, double factor, size_t input_vertices) {
 
 }  // namespace
 
-EncodeOptions ToBeat(const EncodeOptions& options, size_t best_bytes, double best_lambda) {
+EncodeOptions ToBeat(const EncodeOptions& options, const StatusOr<std::vector<uint8_t>>& best,
+                     const EncodeReport& best_report) {
   EncodeOptions o = options;
-  if (options.target_psnr <= 0) return o;
-  if (best_lambda > 0) o.lambda = best_lambda;
-  o.outbid_bytes = best_bytes;
+  if (options.target_psnr <= 0 || !best.ok()) return o;
+  if (best_report.lambda > 0) o.lambda = best_report.lambda;
+  o.outbid_bytes = best->size();
   return o;
 }
 
@@ -71,7 +68,7 @@ BaseSizeTry WalkBaseSizes(const Mesh& input, const RemeshOptions& remesh, const 
       n = StepFrom(n, factor, input_vertices);
       if (n == 0) break;
       if (tried) tried->push_back(n);
-      BaseSizeTry t = EncodeAtBaseSize(input, remesh, StartingFrom(options, best), n);
+      BaseSizeTry t = EncodeAtBaseSize(input, remesh, ToBeat(options, best.stream, best.report), n);
       if (!BeatsAtTarget(options, t, best)) break;
       best = std::move(t);
       moved = true;

@@ -46,14 +46,16 @@ inline constexpr size_t kMinInputPerBaseVertex = 4;
 // remesh alone takes 9 s, dragon_vrip's 155 s).
 inline constexpr size_t kBaseWalkMaxInputVertices = 60'000;
 
-// The options for a try that competes with a best stream of `best_bytes` bytes
-// found at `best_lambda`, for the same target: a PSNR target's search starts at
-// that lambda (near its answer; where quality is monotone in lambda the answer
-// does not depend on the start) and gives up once it shows it cannot come in
-// under the best (EncodeOptions::outbid_bytes). A rate target's search, which
-// takes the first stream within tolerance, starts as asked. Used by this walk
-// and by the simplified as-is walk (representation_choice.h).
-EncodeOptions ToBeat(const EncodeOptions& options, size_t best_bytes, double best_lambda);
+// The options for a try that competes with the best stream so far (`best`,
+// encoded as `best_report` says), for the same target: a PSNR target's search
+// starts at the best's lambda (near its answer; where quality is monotone in
+// lambda the answer does not depend on the start) and gives up once it shows it
+// cannot come in under the best (EncodeOptions::outbid_bytes). A rate target's
+// search, which takes the first stream within tolerance, starts as asked, as
+// does any try while no stream is best. Used by this walk and by the simplified
+// as-is walk (representation_choice.h).
+EncodeOptions ToBeat(const EncodeOptions& options, const StatusOr<std::vector<uint8_t>>& best,
+                     const EncodeReport& best_report);
 
 struct BaseSizeTry {
   size_t base_vertices = 0;

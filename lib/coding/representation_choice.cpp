@@ -132,11 +132,6 @@ bool BeatsForTarget(const EncodeOptions& options, const AsIsCandidate& a, const 
   return !b.stream.ok() || AsIsIsBetter(options, b.report, a.report);
 }
 
-// The options for a simplified try against the best so far (ToBeat).
-EncodeOptions From(const EncodeOptions& options, const AsIsCandidate& best) {
-  return best.stream.ok() ? ToBeat(options, best.stream->size(), best.report.lambda) : options;
-}
-
 // With a target: `best` (the input as is, coded for it), then the input
 // simplified (kSimplifyShare steps, see the header); the best of those tried.
 AsIsCandidate WalkSimplified(const SemiRegularMesh& as_is, const EncodeOptions& options, AsIsCandidate best) {
@@ -146,12 +141,12 @@ AsIsCandidate WalkSimplified(const SemiRegularMesh& as_is, const EncodeOptions& 
   for (int step = 0; step < kMaxSimplifySteps; ++step) {
     std::optional<SemiRegularMesh> mesh = SimplifiedAsIs(*from, kSimplifyShare);
     if (!mesh) break;
-    AsIsCandidate c = EncodeAsIs(*mesh, From(options, best));
+    AsIsCandidate c = EncodeAsIs(*mesh, ToBeat(options, best.stream, best.report));
     if (!BeatsForTarget(options, c, best)) {
       if (step > 0) break;
       std::optional<SemiRegularMesh> half = SimplifiedAsIs(as_is, std::sqrt(kSimplifyShare));
       if (!half) break;
-      AsIsCandidate h = EncodeAsIs(*half, From(options, best));
+      AsIsCandidate h = EncodeAsIs(*half, ToBeat(options, best.stream, best.report));
       if (BeatsForTarget(options, h, best)) best = std::move(h);
       break;
     }

@@ -132,16 +132,23 @@ TEST(BaseSizeWalk, ATryReplacesOnlyWhatItBeatsAtTheTarget) {
 }
 
 TEST(BaseSizeWalk, ATryAtAPsnrTargetStartsAtTheBestsLambdaAndIsBoundByItsBytes) {
+  const StatusOr<std::vector<uint8_t>> best = std::vector<uint8_t>(1234);
+  EncodeReport best_report;
+  best_report.lambda = 0.25;
   EncodeOptions psnr;
   psnr.target_psnr = 60.0;
-  const EncodeOptions bounded = ToBeat(psnr, 1234, 0.25);
+  const EncodeOptions bounded = ToBeat(psnr, best, best_report);
   EXPECT_EQ(bounded.outbid_bytes, 1234u);
   EXPECT_EQ(bounded.lambda, 0.25);
   EncodeOptions rate;
   rate.target_bpv = 1.0;
-  const EncodeOptions as_asked = ToBeat(rate, 1234, 0.25);
+  const EncodeOptions as_asked = ToBeat(rate, best, best_report);
   EXPECT_EQ(as_asked.outbid_bytes, 0u);
   EXPECT_EQ(as_asked.lambda, rate.lambda);
+  const StatusOr<std::vector<uint8_t>> none = Status(StatusCode::kTargetOutOfReach, "out of reach");
+  const EncodeOptions unbounded = ToBeat(psnr, none, best_report);  // nothing to beat yet
+  EXPECT_EQ(unbounded.outbid_bytes, 0u);
+  EXPECT_EQ(unbounded.lambda, psnr.lambda);
 }
 
 TEST(BaseSizeWalk, RunsOnlyWithATargetOnAMidSizeInput) {
