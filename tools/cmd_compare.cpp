@@ -151,7 +151,7 @@ int RunCompare(int argc, char** argv) {
       ->required();
   app.add_option("OTHER", args.other, "mesh to measure against IN (same formats)")->required();
   app.add_option("--samples", args.samples,
-                 "samples per direction (default: 10 x larger vertex count, clamped to 1M..20M; limit 1e9)")
+                 "samples per direction (default: 10 x IN's vertex count, clamped to 1M..20M; limit 1e9)")
       ->check(CLI::NonNegativeNumber);  // else "-5" wraps to 2^64 - 5
   app.add_option("--seed", args.seed, "sampling seed (same seed, same numbers)")->check(CLI::NonNegativeNumber);
   app.add_option("--threads", args.threads, "worker threads, 0 = all cores")->check(CLI::Range(0, 1024));

@@ -60,7 +60,7 @@ StatusOr<ColorDistance> CompareColors(const Mesh& a, const SurfaceColor& color_a
   EQMESH_ASSIGN_OR_RETURN(const TriangleBvh bvh_a, TriangleBvh::Build(a));
   EQMESH_ASSIGN_OR_RETURN(const TriangleBvh bvh_b, TriangleBvh::Build(b));
   ColorDistance r;
-  r.samples = options.samples > 0 ? options.samples : DefaultSampleCount(a, b);
+  r.samples = options.samples > 0 ? options.samples : DefaultSampleCount(a);
   r.rms_ab = DirectionRms({*sampler_a, color_a, bvh_b, color_b, r.samples, options.seed, 0}, options.threads);
   r.rms_ba = DirectionRms({*sampler_b, color_b, bvh_a, color_a, r.samples, options.seed, 1}, options.threads);
   r.rms = std::max(r.rms_ab, r.rms_ba);

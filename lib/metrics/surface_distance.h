@@ -20,7 +20,7 @@
 namespace eqmesh {
 
 struct CompareOptions {
-  uint64_t samples = 0;     // per direction; 0 = DefaultSampleCount(a, b)
+  uint64_t samples = 0;     // per direction; 0 = DefaultSampleCount(a)
   uint64_t seed = 0x5eed;
   int threads = 0;          // 0 = hardware concurrency; results never depend on it
 };
@@ -38,9 +38,11 @@ struct SurfaceDistance {
 // Largest sample count accepted (memory is O(samples / 4096), time is not).
 inline constexpr uint64_t kMaxCompareSamples = 1'000'000'000;
 
-// The sample count used when CompareOptions::samples == 0; see the .cpp for
-// the measurement that chose it.
-uint64_t DefaultSampleCount(const Mesh& a, const Mesh& b);
+// The sample count used when CompareOptions::samples == 0: 10 per vertex of the
+// original, clamped to 1M..20M (see the .cpp for the measurement that chose it),
+// so the meter's reading of an approximation does not depend on how many
+// vertices the approximation has.
+uint64_t DefaultSampleCount(const Mesh& original);
 
 // The checks CompareSurfaces makes on each input: at least one vertex and one
 // face, indices in range, finite coordinates, non-zero area.

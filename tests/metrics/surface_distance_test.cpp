@@ -145,7 +145,10 @@ TEST(CompareSurfaces, DeterministicAcrossThreadCountsAndRuns) {
 
 TEST(CompareSurfaces, DefaultSampleCountIsUsedWhenZero) {
   const Mesh m = testing::MakeIcosphere(1);
-  EXPECT_GE(DefaultSampleCount(m, m), 1000u);
+  EXPECT_EQ(DefaultSampleCount(m), 1'000'000u);
+  // Ten per vertex of the original alone (163,842 vertices): an approximation's
+  // vertex count does not enter.
+  EXPECT_EQ(DefaultSampleCount(testing::MakeIcosphere(7)), 1'638'420u);
 }
 
 TEST(CompareSurfaces, RejectsBadInputWithClearErrors) {
