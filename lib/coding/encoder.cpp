@@ -224,6 +224,7 @@ std::vector<uint8_t> Assemble(StreamHeader header, const std::vector<uint8_t>& b
 struct Pass {
   std::vector<uint8_t> bytes;
   EncodeReport report;
+  uint64_t geometry_key = 0;  // of its decoded mesh, where a search measured it (GeometryKey)
 };
 
 StreamHeader MakeHeader(const Prepared& prep, const EncodeOptions& options, int64_t code) {
@@ -512,6 +513,44 @@ StatusOr<std::optional<Pass>> MatchRateWithTangential(const Prepared& prep, cons
   return InternalError("rate control lost its chosen tangential point");
 }
 
+// FNV-1a over a mesh's position bits and faces: a cheap first test of whether
+// two trial streams decode to the same geometry.
+uint64_t GeometryKey(const Mesh& mesh) {
+  uint64_t h = 1469598103934665603ull;
+  const auto mix = [&h](const void* data, size_t size) {
+    const auto* b = static_cast<const uint8_t*>(data);
+    for (size_t i = 0; i < size; ++i) h = (h ^ b[i]) * 1099511628211ull;
+  };
+  if (!mesh.positions.empty()) mix(mesh.positions.data(), mesh.positions.size() * sizeof(Vec3));
+  if (!mesh.faces.empty()) mix(mesh.faces.data(), mesh.faces.size() * sizeof(Face));
+  return h;
+}
+
+StatusOr<Mesh> DecodeTrial(const std::vector<uint8_t>& bytes, const EncodeOptions& options) {
+  DecodeOptions decode;
+  decode.max_triangles = options.max_triangles;
+  return Decode(bytes.data(), bytes.size(), decode);
+}
+
+// A search pass's PSNR as MeasureEncodedPsnr takes it (*key: its geometry's
+// GeometryKey), or an earlier pass's where that one decodes to the same mesh:
+// lambda codes a few steps apart often give the same geometry (an as-is
+// stream changes only where its grid depth does; lambda steers level chunks
+// alone), and the meter is most of a search's time (a cow --psnr 70 encode
+// measured 10 of its 71 trial streams' geometries twice or more).
+StatusOr<double> MeasureSearchPass(const Pass& pass, const std::vector<Pass>& earlier, const EncodeOptions& options,
+                                   uint64_t* key) {
+  EQMESH_ASSIGN_OR_RETURN(const Mesh decoded, DecodeTrial(pass.bytes, options));
+  *key = GeometryKey(decoded);
+  for (const Pass& other : earlier) {
+    if (other.geometry_key != *key) continue;
+    EQMESH_ASSIGN_OR_RETURN(const Mesh again, DecodeTrial(other.bytes, options));
+    if (again.positions == decoded.positions && again.faces == decoded.faces) return other.report.psnr_db;
+  }
+  return MeasureMeshPsnr(decoded, *options.original, MeasureSamples(options, kSearchSamples),
+                         options.prepared_original.get());
+}
+
 // A lambda-code evaluator that keeps every pass (so the chosen point's report
 // survives), measuring each one's PSNR when asked to.
 RateEvaluator RecordingEvaluator(const Prepared& prep, const EncodeOptions& options, std::deque<Renumbered>* cache,
@@ -522,7 +561,7 @@ RateEvaluator RecordingEvaluator(const Prepared& prep, const EncodeOptions& opti
     point.lambda_code = code;
     point.bpv = pass.report.bpv;
     if (measure) {
-      EQMESH_ASSIGN_OR_RETURN(point.psnr_db, MeasureEncodedPsnr(pass.bytes, options, kSearchSamples));
+      EQMESH_ASSIGN_OR_RETURN(point.psnr_db, MeasureSearchPass(pass, *passes, options, &pass.geometry_key));
       pass.report.psnr_db = point.psnr_db;
       if (Outbid(options, pass)) return Status(StatusCode::kOutbid, "a stream of this mesh meeting the target is larger");
     }
