@@ -536,8 +536,8 @@ StatusOr<Mesh> DecodeTrial(const std::vector<uint8_t>& bytes, const EncodeOption
 // GeometryKey), or an earlier pass's where that one decodes to the same mesh:
 // lambda codes a few steps apart often give the same geometry (an as-is
 // stream changes only where its grid depth does; lambda steers level chunks
-// alone), and the meter is most of a search's time (a cow --psnr 70 encode
-// measured 10 of its 71 trial streams' geometries twice or more).
+// alone), and the meter is most of a search's time (10 of the 71 measurements
+// of a cow --psnr 70 encode were of a geometry it had measured before).
 StatusOr<double> MeasureSearchPass(const Pass& pass, const std::vector<Pass>& earlier, const EncodeOptions& options,
                                    uint64_t* key) {
   EQMESH_ASSIGN_OR_RETURN(const Mesh decoded, DecodeTrial(pass.bytes, options));
