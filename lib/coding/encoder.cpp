@@ -14,6 +14,7 @@
 #include <algorithm>
 
 #include <cmath>
+#include <cstring>
 #include <deque>
 #include <optional>
 
@@ -513,16 +514,19 @@ StatusOr<std::optional<Pass>> MatchRateWithTangential(const Prepared& prep, cons
   return InternalError("rate control lost its chosen tangential point");
 }
 
-// FNV-1a over a mesh's position bits and faces: a cheap first test of whether
-// two trial streams decode to the same geometry.
+// A hash of a mesh's position bits and faces (FNV-1a's step over 64-bit words):
+// a cheap first test of whether two trial streams decode to the same geometry.
 uint64_t GeometryKey(const Mesh& mesh) {
   uint64_t h = 1469598103934665603ull;
-  const auto mix = [&h](const void* data, size_t size) {
-    const auto* b = static_cast<const uint8_t*>(data);
-    for (size_t i = 0; i < size; ++i) h = (h ^ b[i]) * 1099511628211ull;
-  };
-  if (!mesh.positions.empty()) mix(mesh.positions.data(), mesh.positions.size() * sizeof(Vec3));
-  if (!mesh.faces.empty()) mix(mesh.faces.data(), mesh.faces.size() * sizeof(Face));
+  const auto mix = [&h](uint64_t word) { h = (h ^ word) * 1099511628211ull; };
+  for (const Vec3& p : mesh.positions) {
+    for (int k = 0; k < 3; ++k) {
+      uint64_t bits;
+      std::memcpy(&bits, &p[k], sizeof(bits));
+      mix(bits);
+    }
+  }
+  for (const Face& f : mesh.faces) mix((uint64_t{f[0]} << 32 | f[1]) ^ (uint64_t{f[2]} << 16));
   return h;
 }
 
