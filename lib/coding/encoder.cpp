@@ -530,12 +530,6 @@ uint64_t GeometryKey(const Mesh& mesh) {
   return h;
 }
 
-StatusOr<Mesh> DecodeTrial(const std::vector<uint8_t>& bytes, const EncodeOptions& options) {
-  DecodeOptions decode;
-  decode.max_triangles = options.max_triangles;
-  return Decode(bytes.data(), bytes.size(), decode);
-}
-
 // A search pass's PSNR as MeasureEncodedPsnr takes it (*key: its geometry's
 // GeometryKey), or an earlier pass's where that one decodes to the same mesh:
 // lambda codes a few steps apart often give the same geometry (an as-is
@@ -544,11 +538,11 @@ StatusOr<Mesh> DecodeTrial(const std::vector<uint8_t>& bytes, const EncodeOption
 // of a cow --psnr 70 encode were of a geometry it had measured before).
 StatusOr<double> MeasureSearchPass(const Pass& pass, const std::vector<Pass>& earlier, const EncodeOptions& options,
                                    uint64_t* key) {
-  EQMESH_ASSIGN_OR_RETURN(const Mesh decoded, DecodeTrial(pass.bytes, options));
+  EQMESH_ASSIGN_OR_RETURN(const Mesh decoded, DecodeForMeasure(pass.bytes, options.max_triangles));
   *key = GeometryKey(decoded);
   for (const Pass& other : earlier) {
     if (other.geometry_key != *key) continue;
-    EQMESH_ASSIGN_OR_RETURN(const Mesh again, DecodeTrial(other.bytes, options));
+    EQMESH_ASSIGN_OR_RETURN(const Mesh again, DecodeForMeasure(other.bytes, options.max_triangles));
     if (again.positions == decoded.positions && again.faces == decoded.faces) return other.report.psnr_db;
   }
   return MeasureMeshPsnr(decoded, *options.original, MeasureSamples(options, kSearchSamples),

@@ -89,14 +89,15 @@ struct RepresentationOptions {
 // EncodeChoosingLevels(remeshed) (with representation.remesh and a target, the
 // best of the base-size walk from it, base_size_walk.h) and, where allowed and
 // options.original is set, the input coded as is, where remeshed's own stream's
-// bytes leave room for the connectivity and kAsIsMinPositionBits per vertex, or it falls short of its
-// target, or nothing was remeshed (then the input as is is the only stream);
-// returns the better. With a PSNR target the smaller meeting it, with a bpv
-// target the higher PSNR (both: the input as is or simplified, whichever of
-// those is best by the same rule). Without a target the remeshed stream is measured (if
-// the encode did not): below floor_db the higher PSNR at the lambda; above it
-// the as-is stream at the lambda where neither larger nor worse, else the as-is
-// stream searched for the remeshed stream's PSNR where no larger.
+// bytes leave room for the connectivity and kAsIsMinPositionBits per vertex, or
+// it falls short of its target, or nothing was remeshed (then the input as is is
+// the only stream); returns the better. With a PSNR target the smaller meeting
+// it, with a bpv target the higher PSNR (both: the input as is or simplified,
+// whichever of those is best by the same rule). Without a target the remeshed
+// stream is measured (if the encode did not): below floor_db the higher PSNR at
+// the lambda; above it the as-is stream at the lambda where neither larger nor
+// worse, else the as-is stream searched for the remeshed stream's PSNR where no
+// larger.
 StatusOr<std::vector<uint8_t>> EncodeChoosingRepresentation(const SemiRegularMesh& remeshed,
                                                             const EncodeOptions& options,
                                                             const RepresentationOptions& representation,

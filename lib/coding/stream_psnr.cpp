@@ -50,11 +50,15 @@ StatusOr<double> MeasureMeshPsnr(const Mesh& mesh, const Mesh& original, uint64_
 #endif
 }
 
-StatusOr<double> MeasureStreamPsnr(const std::vector<uint8_t>& stream, const Mesh& original, uint64_t samples,
-                                   uint64_t max_triangles, const PreparedOriginal* prepared) {
+StatusOr<Mesh> DecodeForMeasure(const std::vector<uint8_t>& stream, uint64_t max_triangles) {
   DecodeOptions options;
   options.max_triangles = max_triangles;
-  EQMESH_ASSIGN_OR_RETURN(const Mesh decoded, Decode(stream.data(), stream.size(), options));
+  return Decode(stream.data(), stream.size(), options);
+}
+
+StatusOr<double> MeasureStreamPsnr(const std::vector<uint8_t>& stream, const Mesh& original, uint64_t samples,
+                                   uint64_t max_triangles, const PreparedOriginal* prepared) {
+  EQMESH_ASSIGN_OR_RETURN(const Mesh decoded, DecodeForMeasure(stream, max_triangles));
   return MeasureMeshPsnr(decoded, original, samples, prepared);
 }
 

@@ -35,7 +35,10 @@ StatusOr<std::shared_ptr<const PreparedOriginal>> PrepareOriginal(const Mesh& or
 // prepared from `original`, saves preparing it again (the same doubles).
 StatusOr<double> MeasureMeshPsnr(const Mesh& mesh, const Mesh& original, uint64_t samples = 0,
                                  const PreparedOriginal* prepared = nullptr);
-// The stream decoded within `max_triangles` (0: every triangle of every level).
+// The stream decoded as the meter measures it: within `max_triangles` (0: every
+// triangle of every level).
+StatusOr<Mesh> DecodeForMeasure(const std::vector<uint8_t>& stream, uint64_t max_triangles);
+// MeasureMeshPsnr of DecodeForMeasure(stream, max_triangles).
 StatusOr<double> MeasureStreamPsnr(const std::vector<uint8_t>& stream, const Mesh& original, uint64_t samples = 0,
                                    uint64_t max_triangles = 0, const PreparedOriginal* prepared = nullptr);
 
