@@ -64,7 +64,7 @@ double DecodedPsnr(const Mesh& original, const std::vector<uint8_t>& stream) {
 
 TEST(BaseSizeWalk, NeverLargerThanTheRemeshersBaseAndMeetsThePsnrTarget) {
   const Mesh input = RidgedSphere();
-  const EncodeOptions options = TargetAgainst(input, 50.0);
+  const EncodeOptions options = TargetAgainst(input, 42.0);
   const RemeshOptions remesh;
   BaseSizeTry first = FirstTry(input, remesh, options);
   ASSERT_TRUE(first.stream.ok()) << first.stream.status().ToString();
@@ -86,7 +86,7 @@ TEST(BaseSizeWalk, NeverLargerThanTheRemeshersBaseAndMeetsThePsnrTarget) {
 
 TEST(BaseSizeWalk, IsDeterministic) {
   const Mesh input = RidgedSphere();
-  const EncodeOptions options = TargetAgainst(input, 50.0);
+  const EncodeOptions options = TargetAgainst(input, 42.0);
   const RemeshOptions remesh;
   const BaseSizeTry a = WalkBaseSizes(input, remesh, options, FirstTry(input, remesh, options));
   const BaseSizeTry b = WalkBaseSizes(input, remesh, options, FirstTry(input, remesh, options));
@@ -167,7 +167,7 @@ TEST(BaseSizeWalk, RunsOnlyWithATargetOnAMidSizeInput) {
 
 TEST(BaseSizeWalk, TheRepresentationChoiceWalksOnlyWhereItMayChooseTheRemesh) {
   const Mesh input = RidgedSphere();
-  const EncodeOptions options = TargetAgainst(input, 50.0);
+  const EncodeOptions options = TargetAgainst(input, 42.0);
   const RemeshOptions remesh;
   RemeshReport report;
   auto remeshed = Remesh(input, remesh, &report);
