@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The whole test suite (what .ci/run calls): installs what is missing, then
 #   1. builds (gcc, RelWithDebInfo with line tables only, warnings on) and runs
-#      every GoogleTest case, then installs the package and builds the C consumer against it
-#      (scripts/test-install.sh);
+#      every GoogleTest case, then installs the package and builds the C
+#      consumer against it (scripts/test-install.sh);
 #   2. the web loader in headless Chromium (scripts/test-web.sh);
 #   3. the same GoogleTest suite built with clang -O1 under AddressSanitizer +
 #      UndefinedBehaviorSanitizer (scripts/test-sanitizers.sh); the pinned
