@@ -8,7 +8,10 @@
 # usage: bench/midsize_codec.sh [EQMESH_BINARY] [SHARED_MESHES_DIR] [OUT_DIR]
 # EQMESH_PSNR=D (default 70); EQMESH_MESHES="knot.off.gz dino.off.gz" picks meshes.
 # Prints one row per mesh: eqmesh bytes, bpv, decoded PSNR, levels, base bytes,
-# Draco's interpolated bytes and the ratio Draco / eqmesh; the median ratio last.
+# Draco's interpolated bytes and the ratio Draco / eqmesh, then flipped faces
+# against the input (`compare --folds`) of the stream decoded whole, of it
+# decoded within the input's triangle count (a .glb's default) and of Draco's
+# decode at the first qp that reaches the stream's PSNR; the median ratio last.
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 eqmesh="${1:-$here/../build/tools/eqmesh}"
@@ -21,8 +24,13 @@ all=(midsize/knot.off.gz midsize/bones.off.gz midsize/mushroom.off.gz midsize/tr
      midsize/lion-head.off.gz midsize/mannequin-devil.off.gz midsize/man.off.gz midsize/bear.off.gz
      midsize/diplodocus.off.gz small/bunny_npm.obj small/fandisk.obj small/skull_low_resolution.obj
      small/rocker-arm.off small/max-planck_10k.obj)
-psnr_of() { "$eqmesh" compare "$1" "$2" --json | python3 -c 'import json,sys; print(json.load(sys.stdin)["psnr_db"])'; }
-printf '%-26s %7s %7s %7s %4s %6s %7s %7s %s\n' mesh bytes bpv psnr lvl base draco ratio seconds
+# "PSNR flipped-faces" of $2 against $1.
+psnr_folds_of() {
+  "$eqmesh" compare "$1" "$2" --folds --json |
+    python3 -c 'import json,sys; d = json.load(sys.stdin); print(d["psnr_db"], d["flipped_faces"])'
+}
+printf '%-26s %7s %7s %7s %4s %6s %7s %7s %6s %6s %6s %s\n' mesh bytes bpv psnr lvl base draco ratio folds f_budg \
+  f_drc seconds
 ratios="$out_dir/ratios.txt"
 : > "$ratios"
 for rel in "${all[@]}"; do
@@ -39,18 +47,23 @@ for rel in "${all[@]}"; do
   fi
   seconds=$(python3 -c "import time; print('%.1f' % ($(date +%s.%N) - $start))")
   "$eqmesh" decode "$out_dir/$stem.eqm" "$out_dir/$stem.decoded.ply" >/dev/null
-  psnr=$(psnr_of "$canon" "$out_dir/$stem.decoded.ply")
+  read -r psnr folds < <(psnr_folds_of "$canon" "$out_dir/$stem.decoded.ply")
+  input_faces=$(head -c 1000 "$canon" | grep -a '^element face' | awk '{print $3}')
+  "$eqmesh" decode "$out_dir/$stem.eqm" "$out_dir/$stem.budget.ply" --max-triangles "$input_faces" >/dev/null
+  read -r _ budget_folds < <(psnr_folds_of "$canon" "$out_dir/$stem.budget.ply")
   rows="$out_dir/$stem.draco"
   : > "$rows"
   for qp in 7 8 9 10 11 12 13 14; do
     draco_encoder -i "$canon" -o "$out_dir/$stem.drc" -qp "$qp" -cl 10 >/dev/null 2>&1
     draco_decoder -i "$out_dir/$stem.drc" -o "$out_dir/$stem.draco.ply" >/dev/null 2>&1
-    echo "$qp $(stat -c %s "$out_dir/$stem.drc") $(psnr_of "$canon" "$out_dir/$stem.draco.ply")" >> "$rows"
+    echo "$qp $(stat -c %s "$out_dir/$stem.drc") $(psnr_folds_of "$canon" "$out_dir/$stem.draco.ply")" >> "$rows"
   done
-  python3 - "$name" "$json" "$psnr" "$rows" "$seconds" "$ratios" <<'PY'
+  python3 - "$name" "$json" "$psnr" "$rows" "$seconds" "$ratios" "$folds" "$budget_folds" <<'PY'
 import json, sys
 name, d, psnr, rows, seconds, ratios = sys.argv[1], json.loads(sys.argv[2]), float(sys.argv[3]), sys.argv[4], sys.argv[5], sys.argv[6]
-pts = [tuple(map(float, l.split())) for l in open(rows)]
+folds, budget_folds = sys.argv[7], sys.argv[8]
+pts = [tuple(map(float, l.split()[:3])) for l in open(rows)]
+draco_folds = next((l.split()[3] for l in open(rows) if float(l.split()[2]) >= psnr), "n/a")
 draco = None
 for (q0, b0, p0), (q1, b1, p1) in zip(pts, pts[1:]):
     if p0 <= psnr <= p1:
@@ -58,8 +71,8 @@ for (q0, b0, p0), (q1, b1, p1) in zip(pts, pts[1:]):
 ratio = draco / d["bytes"] if draco else float("nan")
 if draco:
     open(ratios, "a").write("%f\n" % ratio)
-print("%-26s %7d %7.3f %7.2f %4d %6d %7s %7.2f %s" % (name, d["bytes"], d["bpv"], psnr, d["levels"], d["base_bytes"],
-      "%.0f" % draco if draco else "n/a", ratio, seconds))
+print("%-26s %7d %7.3f %7.2f %4d %6d %7s %7.2f %6s %6s %6s %s" % (name, d["bytes"], d["bpv"], psnr, d["levels"],
+      d["base_bytes"], "%.0f" % draco if draco else "n/a", ratio, folds, budget_folds, draco_folds, seconds))
 PY
 done
 python3 - "$ratios" <<'PY'

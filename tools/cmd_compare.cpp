@@ -17,6 +17,7 @@
 #include "metrics/color_distance.h"
 #include "core/parallel_blocks.h"
 #include "metrics/surface_distance.h"
+#include "remesh/quality_checks.h"
 #include "tools/command.h"
 #include "tools/gltf_info.h"
 
@@ -28,12 +29,14 @@ struct CompareArgs {
   uint64_t samples = 0;
   uint64_t seed = CompareOptions{}.seed;
   int threads = 0;
+  bool folds = false;
   bool json = false;
 };
 
 struct CompareRun {
   SurfaceDistance d;
   std::optional<ColorDistance> color;  // when both inputs are glTF and one is coloured
+  std::optional<FoldReport> folds;     // with --folds
   size_t faces_original = 0, faces_other = 0;
   double read_seconds = 0.0, compare_seconds = 0.0;
 };
@@ -103,6 +106,10 @@ nlohmann::json ToJson(const CompareArgs& args, const CompareRun& run) {
     j["color_rms_ba"] = run.color->rms_ba;
     j["color_psnr_db"] = FiniteOrNull(run.color->psnr_db);
   }
+  if (run.folds) {
+    j["flipped_faces"] = run.folds->flipped_faces;
+    j["degenerate_faces"] = run.folds->degenerate_faces;
+  }
   j["samples"] = d.samples;
   j["seed"] = args.seed;
   j["threads"] = ResolveThreadCount(args.threads);
@@ -133,6 +140,10 @@ void PrintTable(const CompareArgs& args, const CompareRun& run) {
     std::printf("colour     rms %.3f of 255 (%.3f / %.3f), psnr %.3f dB\n", run.color->rms, run.color->rms_ab,
                 run.color->rms_ba, run.color->psnr_db);
   }
+  if (run.folds) {
+    std::printf("folds      %zu flipped, %zu degenerate of OTHER's %zu faces\n", run.folds->flipped_faces,
+                run.folds->degenerate_faces, run.faces_other);
+  }
   std::printf("seconds    %.3f (read %.3f, compare %.3f)\n", run.read_seconds + run.compare_seconds,
               run.read_seconds, run.compare_seconds);
 }
@@ -155,6 +166,10 @@ int RunCompare(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);  // else "-5" wraps to 2^64 - 5
   app.add_option("--seed", args.seed, "sampling seed (same seed, same numbers)")->check(CLI::NonNegativeNumber);
   app.add_option("--threads", args.threads, "worker threads, 0 = all cores")->check(CLI::Range(0, 1024));
+  app.add_flag("--folds", args.folds,
+               "also count OTHER's flipped faces (normal opposed to that of IN's face nearest the face's "
+               "centroid, each connected part of OTHER against the part of IN it lies on: the test behind "
+               "`remesh --json`'s flipped_faces) and its degenerate ones");
   app.add_flag("--json", args.json, "print one JSON object instead of a table");
   try {
     app.parse(argc, argv);
@@ -177,6 +192,11 @@ int RunCompare(int argc, char** argv) {
   auto color = CompareSceneColors(args, d->samples);
   if (!color.ok()) return Fail("compare", args.original + " vs " + args.other + ": colour: " + color.status().message());
   run.color = *color;
+  if (args.folds) {
+    StatusOr<FoldReport> folds = CountFoldsAgainstInput(*b, *a);
+    if (!folds.ok()) return Fail("compare", args.original + " vs " + args.other + ": folds: " + folds.status().message());
+    run.folds = *folds;
+  }
   run.compare_seconds = SecondsSince(compare_start);
   if (args.json) {
     std::printf("%s\n", ToJson(args, run).dump(2).c_str());

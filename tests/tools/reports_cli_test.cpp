@@ -2,7 +2,8 @@
 // compressed GLB, the per-primitive rate and PSNR of a .glb encode (the same
 // stream a .eqm encode writes), quality targets that cannot be met (a clear
 // error, no file), one message per broken GLB whichever command reads it, and
-// the colour error `compare` adds for textured glTF.
+// the colour error `compare` adds for textured glTF, and the folds it counts
+// when asked.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -187,6 +188,28 @@ TEST(ReportsCli, CompareMeasuresColourOfTexturedGltfOnly) {
   const std::string sphere = WriteBumpySphere(dir);
   const nlohmann::json plain = Json(RunTool("compare " + sphere + " " + sphere + " --samples 20000 --json"));
   EXPECT_FALSE(plain.contains("color_psnr_db")) << plain.dump();
+}
+
+// `compare --folds`: faces of OTHER turned against IN are counted, and only
+// when asked.
+TEST(ReportsCli, CompareCountsFlippedFacesWhenAsked) {
+  const ScratchDir dir("reports_folds");
+  const std::string sphere = WriteBumpySphere(dir);
+  StatusOr<Mesh> turned = ReadMesh(sphere);
+  ASSERT_TRUE(turned.ok());
+  for (const size_t f : {size_t{0}, size_t{100}, size_t{2000}}) std::swap(turned->faces[f][1], turned->faces[f][2]);
+  const std::string other = dir.Path("turned.obj");
+  ASSERT_TRUE(WriteMesh(*turned, other).ok());
+  const std::string samples = " --samples 20000 --json";
+  const nlohmann::json folded = Json(RunTool("compare " + sphere + " " + other + " --folds" + samples));
+  EXPECT_EQ(folded["flipped_faces"], 3) << folded.dump();
+  EXPECT_EQ(folded["degenerate_faces"], 0) << folded.dump();
+  const nlohmann::json same = Json(RunTool("compare " + sphere + " " + sphere + " --folds" + samples));
+  EXPECT_EQ(same["flipped_faces"], 0) << same.dump();
+  const nlohmann::json unasked = Json(RunTool("compare " + sphere + " " + other + samples));
+  EXPECT_FALSE(unasked.contains("flipped_faces")) << unasked.dump();
+  const ToolRun table = RunTool("compare " + sphere + " " + other + " --folds --samples 20000");
+  EXPECT_NE(table.output.find("3 flipped"), std::string::npos) << table.output;
 }
 
 }  // namespace
