@@ -226,7 +226,11 @@ TEST(Remesh, StanfordBunnyBoundaryVerticesStayOnItsHoles) {
   if (!testing::HaveSharedMeshes()) GTEST_SKIP() << "shared meshes absent";
   auto input = ReadMesh(testing::SharedPath("meshes/bench/stanford-bunny.obj"));
   ASSERT_TRUE(input.ok()) << input.status().ToString();
-  const RemeshRun run = RemeshOrDie(*input, -1, -1);
+  // Four levels, not the automatic six: the fourth is already refined in 3D and
+  // untangled by the final pass, which lets boundary vertices slide, with a
+  // sixteenth of the vertices (Release: 2.0 s, against 13.6 s at six levels).
+  const RemeshRun run = RemeshOrDie(*input, 4, -1);
+  ASSERT_EQ(run.mesh.hierarchy.levels(), 4);
   EXPECT_EQ(run.report.boundary_loops, 5u);
   const testing::LevelTopology t = testing::CheckLevelTopology(ExtractLevel(run.mesh, run.mesh.hierarchy.levels()));
   EXPECT_TRUE(t.manifold);
