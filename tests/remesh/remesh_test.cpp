@@ -220,7 +220,7 @@ double MaxDistanceToBoundaryEdges(const std::vector<Vec3>& points, const Mesh& i
   return worst;
 }
 
-// The untangler slides boundary vertices along the holes (session 6): they must
+// The untangler slides boundary vertices along the holes: they must
 // stay on the input's boundary curves, the holes stay holes.
 TEST(Remesh, StanfordBunnyBoundaryVerticesStayOnItsHoles) {
   if (!testing::HaveSharedMeshes()) GTEST_SKIP() << "shared meshes absent";
