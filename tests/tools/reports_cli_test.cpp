@@ -1,9 +1,9 @@
 // What the `eqmesh` commands tell a user about what they wrote: `info` on a
 // compressed GLB, the per-primitive rate and PSNR of a .glb encode (the same
 // stream a .eqm encode writes), quality targets that cannot be met (a clear
-// error, no file), one message per broken GLB whichever command reads it, and
-// the colour error `compare` adds for textured glTF, and the folds it counts
-// when asked.
+// error, no file), one message per broken GLB whichever command reads it, the
+// colour error `compare` adds for textured glTF, and the folds it counts when
+// asked.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
