@@ -24,10 +24,10 @@ all=(midsize/knot.off.gz midsize/bones.off.gz midsize/mushroom.off.gz midsize/tr
      midsize/lion-head.off.gz midsize/mannequin-devil.off.gz midsize/man.off.gz midsize/bear.off.gz
      midsize/diplodocus.off.gz small/bunny_npm.obj small/fandisk.obj small/skull_low_resolution.obj
      small/rocker-arm.off small/max-planck_10k.obj)
-# "PSNR flipped-faces" of $2 against $1.
+# "PSNR flipped-faces faces-of-$1" of $2 against $1.
 psnr_folds_of() {
   "$eqmesh" compare "$1" "$2" --folds --json |
-    python3 -c 'import json,sys; d = json.load(sys.stdin); print(d["psnr_db"], d["flipped_faces"])'
+    python3 -c 'import json,sys; d = json.load(sys.stdin); print(d["psnr_db"], d["flipped_faces"], d["faces_original"])'
 }
 printf '%-26s %7s %7s %7s %4s %6s %7s %7s %6s %6s %6s %s\n' mesh bytes bpv psnr lvl base draco ratio folds f_budg \
   f_drc seconds
@@ -47,10 +47,9 @@ for rel in "${all[@]}"; do
   fi
   seconds=$(python3 -c "import time; print('%.1f' % ($(date +%s.%N) - $start))")
   "$eqmesh" decode "$out_dir/$stem.eqm" "$out_dir/$stem.decoded.ply" >/dev/null
-  read -r psnr folds < <(psnr_folds_of "$canon" "$out_dir/$stem.decoded.ply")
-  input_faces=$(head -c 1000 "$canon" | grep -a '^element face' | awk '{print $3}')
+  read -r psnr folds input_faces < <(psnr_folds_of "$canon" "$out_dir/$stem.decoded.ply")
   "$eqmesh" decode "$out_dir/$stem.eqm" "$out_dir/$stem.budget.ply" --max-triangles "$input_faces" >/dev/null
-  read -r _ budget_folds < <(psnr_folds_of "$canon" "$out_dir/$stem.budget.ply")
+  read -r _ budget_folds _ < <(psnr_folds_of "$canon" "$out_dir/$stem.budget.ply")
   rows="$out_dir/$stem.draco"
   : > "$rows"
   for qp in 7 8 9 10 11 12 13 14; do
