@@ -78,6 +78,14 @@ constexpr uint64_t kFloorConfirmSamples = 1'000'000;
 // (RemeshWithFewerFolds), and the factor each applies there.
 constexpr int kFoldRetries = 2;
 constexpr double kFoldBoundScale = 0.25;
+// Where the automatic level count's remesh still folds after those retries,
+// remeshes with up to this many levels fewer (RemeshWithFewerLevels), on inputs
+// of up to kFoldLevelDropVertices vertices: each drop is a whole remesh with
+// its floor and fold retries, which on a large scan costs minutes (a remesh of
+// dragon_vrip, 437k vertices, takes 130 s) for a level count its density seldom
+// allows.
+constexpr int kFoldLevelDrops = 2;
+constexpr size_t kFoldLevelDropVertices = 60'000;
 
 struct Prepared {
   Mesh surface;                  // components to remesh, compacted
@@ -543,6 +551,64 @@ StatusOr<Refinement> RemeshWithFewerFolds(const SurfaceContext& c, RemeshReport*
   return best;
 }
 
+// Whether the finest level of `r` is at least as dense as the input where the
+// input is densest: no base face carries more input vertices (by their
+// parameters) than the finest level puts in it (about half its 4^levels faces).
+// The automatic count's global targets (kAutoMinVertexFactor, kAutoMaxEdgeShare)
+// do not apply: a finer base one level fewer is what the caller is after, and
+// the floor, which the caller checks too, holds its error.
+bool DenseWhereTheInputIs(const Refinement& r) {
+  std::vector<uint64_t> carried(r.hierarchy.BaseFaces().size(), 0);
+  for (uint32_t t : r.input_base_face) {
+    if (t < carried.size()) ++carried[t];
+  }
+  const uint64_t finest_per_base_face = (uint64_t{1} << (2 * r.levels)) / 2;
+  return *std::max_element(carried.begin(), carried.end()) <= finest_per_base_face;
+}
+
+// Where the automatic level count's remesh still folds, the remesh again with
+// one level fewer, then two (each with its own floor and fold retries), while
+// one folds less, is as dense as the input where the input is densest
+// (DenseWhereTheInputIs), and measures at least the floor or the kept remesh,
+// whichever is lower. Why: the floor then
+// asks for a finer base, whose coarse levels follow the thin parts (ears,
+// horns, handles, tails) that the coarser base's levels cut across and the
+// untangling cannot mend once the next level inherits them; every level fewer
+// also stops four folds' worth of a fold inherited at the level above.
+// Measured (bench/log/2026-12-07-fewer-levels-where-it-folds.md): cow 24 -> 0
+// folded faces, femur 61 -> 7, diplodocus 80 -> 17, all above 80 dB.
+StatusOr<Refinement> RemeshWithFewerLevels(const SurfaceContext& c, Refinement best, RemeshReport* report) {
+  if (c.options.levels >= 0 || c.options.base_vertices > 0 || !(c.options.min_psnr > 0) ||
+      c.prep.input_vertices > kFoldLevelDropVertices) {
+    return best;
+  }
+  const int automatic = best.levels;
+  for (int levels = automatic - 1; levels >= std::max(1, automatic - kFoldLevelDrops); --levels) {
+    if (best.folded_faces.empty()) break;
+    RemeshOptions options = c.options;
+    options.levels = levels;
+    const SurfaceContext fewer{c.prep, c.reference, c.bvh, c.surface, options, c.density};
+    RemeshReport trial;
+    EQMESH_ASSIGN_OR_RETURN(Refinement r, RemeshWithFewerFolds(fewer, &trial));
+    report->stage_seconds.base_domain += trial.stage_seconds.base_domain;
+    report->stage_seconds.refine += trial.stage_seconds.refine;
+    report->stage_seconds.untangle += trial.stage_seconds.untangle;
+    report->stage_seconds.measure += trial.stage_seconds.measure;
+    const bool kept = r.folded_faces.size() < best.folded_faces.size() && DenseWhereTheInputIs(r) &&
+                      trial.psnr_db >= std::min(c.options.min_psnr, report->psnr_db);
+    if (!kept) break;
+    report->notes.push_back(std::to_string(best.levels) + " levels still folded " +
+                            std::to_string(best.folded_faces.size()) + " faces: remeshed at " +
+                            std::to_string(levels) + " levels (" + std::to_string(r.folded_faces.size()) +
+                            " folded faces)");
+    for (std::string& note : trial.notes) report->notes.push_back(std::move(note));
+    report->psnr_db = trial.psnr_db;
+    report->base_error_share = trial.base_error_share;
+    best = std::move(r);
+  }
+  return best;
+}
+
 }  // namespace
 
 StatusOr<SemiRegularMesh> Remesh(const Mesh& input, const RemeshOptions& options, RemeshReport* report_out) {
@@ -593,7 +659,8 @@ StatusOr<SemiRegularMesh> Remesh(const Mesh& input, const RemeshOptions& options
   const InputSurface surface(prep.surface, bvh, prep.boundary);
   const SurfaceContext context{prep,    reference, bvh, surface,
                                options, AutoDensityTarget(prep.surface, prep.input_vertices)};
-  EQMESH_ASSIGN_OR_RETURN(Refinement best, RemeshWithFewerFolds(context, &report));
+  EQMESH_ASSIGN_OR_RETURN(Refinement folded_or_not, RemeshWithFewerFolds(context, &report));
+  EQMESH_ASSIGN_OR_RETURN(Refinement best, RemeshWithFewerLevels(context, std::move(folded_or_not), &report));
   report.base_vertices = best.hierarchy.NumVertices(0);
   report.base_crease_edges = best.hierarchy.BaseCreases().size();
   CountNormalVertices(best.hierarchy, best.kinds, &report);

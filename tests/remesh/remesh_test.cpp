@@ -244,6 +244,35 @@ TEST(Remesh, StanfordBunnyBoundaryVerticesStayOnItsHoles) {
   EXPECT_GE(run.report.normal_fraction, 0.9);
 }
 
+// Where the automatic level count still folds after the fold retries (cow:
+// 24 faces at 5 levels on a 189-vertex base), the remesher tries a level fewer,
+// on the finer base its floor then asks for, and keeps it only for fewer folds
+// above the floor, as dense as the input where the input is densest. Plain
+// build only (scripts/test-sanitizers.sh): two remeshes of a 2,904-vertex asset.
+TEST(Remesh, ALevelFewerWhereTheAutomaticCountFolds) {
+  if (!testing::HaveSharedMeshes()) GTEST_SKIP() << "shared meshes absent";
+  auto cow = ReadMesh(testing::SharedPath("meshes/midsize/cow.off.gz"));
+  ASSERT_TRUE(cow.ok()) << cow.status().ToString();
+  RemeshOptions options;
+  options.min_psnr = kRemeshQualityFloorDb;
+  RemeshReport fewer;
+  auto kept = Remesh(*cow, options, &fewer);
+  ASSERT_TRUE(kept.ok()) << kept.status().ToString();
+  options.levels = fewer.levels + 1;
+  RemeshReport more;
+  auto finer = Remesh(*cow, options, &more);
+  ASSERT_TRUE(finer.ok()) << finer.status().ToString();
+  const size_t kept_flips = testing::CountFlips(ExtractLevel(*kept, fewer.levels), *cow).flipped;
+  const size_t finer_flips = testing::CountFlips(ExtractLevel(*finer, more.levels), *cow).flipped;
+  EXPECT_LT(kept_flips, finer_flips);
+  EXPECT_GE(fewer.psnr_db, kRemeshQualityFloorDb);
+  EXPECT_GT(fewer.base_vertices, more.base_vertices);
+  const bool noted = std::any_of(fewer.notes.begin(), fewer.notes.end(), [](const std::string& note) {
+    return note.find("levels still folded") != std::string::npos;
+  });
+  EXPECT_TRUE(noted);
+}
+
 TEST(Remesh, BunnyNpmClosedGenusZero) { CheckSharedMesh("bunny_npm.obj", 2, 0.9, 0.018); }
 TEST(Remesh, RockerArmClosedGenusOne) { CheckSharedMesh("rocker-arm.off", 0, 0.9, 0.002); }
 
