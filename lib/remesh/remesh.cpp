@@ -576,7 +576,7 @@ bool DenseWhereTheInputIs(const Refinement& r) {
 // untangling cannot mend once the next level inherits them; every level fewer
 // also stops four folds' worth of a fold inherited at the level above.
 // Measured (bench/log/2026-12-07-fewer-levels-where-it-folds.md): cow 24 -> 0
-// folded faces, femur 61 -> 7, diplodocus 80 -> 17, all above 80 dB.
+// folded faces, femur 61 -> 7, diplodocus 80 -> 28, every remesh above 80 dB.
 StatusOr<Refinement> RemeshWithFewerLevels(const SurfaceContext& c, Refinement best, RemeshReport* report) {
   if (c.options.levels >= 0 || c.options.base_vertices > 0 || !(c.options.min_psnr > 0) ||
       c.prep.input_vertices > kFoldLevelDropVertices) {
