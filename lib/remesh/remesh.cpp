@@ -589,7 +589,10 @@ StatusOr<Refinement> RemeshWithFewerLevels(const SurfaceContext& c, Refinement b
     options.levels = levels;
     const SurfaceContext fewer{c.prep, c.reference, c.bvh, c.surface, options, c.density};
     RemeshReport trial;
-    EQMESH_ASSIGN_OR_RETURN(Refinement r, RemeshWithFewerFolds(fewer, &trial));
+    StatusOr<Refinement> tried = RemeshWithFewerFolds(fewer, &trial);
+    // A drop is optional: one that fails leaves the remesh already made.
+    if (!tried.ok()) break;
+    Refinement r = std::move(tried).value();
     report->stage_seconds.base_domain += trial.stage_seconds.base_domain;
     report->stage_seconds.refine += trial.stage_seconds.refine;
     report->stage_seconds.untangle += trial.stage_seconds.untangle;
