@@ -28,8 +28,9 @@ inline constexpr double kRemeshQualityFloorDb = 80.0;
 struct RemeshOptions {
   // Subdivision levels. -1: automatic (refine until the finest level has 8x the
   // input's vertices and a mean edge of 1/500 of the bounding-box diagonal,
-  // within 64x the input's vertices and 3 million; with a floor, up to two
-  // fewer where the finest level folds; see remesh.cpp). Range [-1, 10].
+  // within 64x the input's vertices and 3 million; with a floor, on inputs of
+  // up to 60k vertices, up to two fewer where the finest level folds; see
+  // remesh.cpp). Range [-1, 10].
   int levels = -1;
   // Base vertices to aim for. -1: automatic: simplify while every input vertex
   // stays within 2 % of its component's diagonal of the base, down to at most

@@ -248,7 +248,8 @@ TEST(Remesh, StanfordBunnyBoundaryVerticesStayOnItsHoles) {
 // 24 faces at 5 levels on a 189-vertex base), the remesher tries a level fewer,
 // on the finer base its floor then asks for, and keeps it only for fewer folds
 // above the floor, as dense as the input where the input is densest. Plain
-// build only (scripts/test-sanitizers.sh): two remeshes of a 2,904-vertex asset.
+// build only (scripts/test-sanitizers.sh): the first Remesh() call alone remeshes
+// the 2,904-vertex asset several times over (its drops, each with floor and retries).
 TEST(Remesh, ALevelFewerWhereTheAutomaticCountFolds) {
   if (!testing::HaveSharedMeshes()) GTEST_SKIP() << "shared meshes absent";
   auto cow = ReadMesh(testing::SharedPath("meshes/midsize/cow.off.gz"));
