@@ -108,6 +108,7 @@ nlohmann::json ToJson(const CompareArgs& args, const CompareRun& run) {
   }
   if (run.folds) {
     j["flipped_faces"] = run.folds->flipped_faces;
+    j["flipped_near_self_crossings"] = run.folds->flipped_near_self_crossings;
     j["degenerate_faces"] = run.folds->degenerate_faces;
   }
   j["samples"] = d.samples;
@@ -141,8 +142,9 @@ void PrintTable(const CompareArgs& args, const CompareRun& run) {
                 run.color->rms_ba, run.color->psnr_db);
   }
   if (run.folds) {
-    std::printf("folds      %zu flipped, %zu degenerate of OTHER's %zu faces\n", run.folds->flipped_faces,
-                run.folds->degenerate_faces, run.faces_other);
+    std::printf("folds      %zu flipped (%zu near where IN crosses itself), %zu degenerate of OTHER's %zu faces\n",
+                run.folds->flipped_faces, run.folds->flipped_near_self_crossings, run.folds->degenerate_faces,
+                run.faces_other);
   }
   std::printf("seconds    %.3f (read %.3f, compare %.3f)\n", run.read_seconds + run.compare_seconds,
               run.read_seconds, run.compare_seconds);
@@ -169,7 +171,8 @@ int RunCompare(int argc, char** argv) {
   app.add_flag("--folds", args.folds,
                "also count OTHER's flipped faces (normal opposed to that of IN's face nearest the face's "
                "centroid, each connected part of OTHER against the part of IN it lies on: the test behind "
-               "`remesh --json`'s flipped_faces) and its degenerate ones");
+               "`remesh --json`'s flipped_faces), how many of those lie within 3 of their edges of a place where IN "
+               "passes through itself, and OTHER's degenerate faces");
   app.add_flag("--json", args.json, "print one JSON object instead of a table");
   try {
     app.parse(argc, argv);

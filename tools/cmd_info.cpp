@@ -11,7 +11,9 @@
 #include <nlohmann/json.hpp>
 
 #include "mesh/diagnose.h"
+#include "mesh/triangle_bvh.h"
 #include "mesh_io/mesh_io.h"
+#include "metrics/self_crossings.h"
 #include "tools/command.h"
 #include "tools/gltf_info.h"
 #include "tools/stream_info.h"
@@ -24,6 +26,7 @@ struct InfoResult {
   ReadReport read;
   std::vector<GltfPrimitiveInfo> primitives;  // glTF with EXT_normal_mesh_compression
   MeshDiagnosis diagnosis;
+  size_t self_crossing_faces = 0;  // faces with an edge through another face
   double read_seconds = 0.0;
   double diagnose_seconds = 0.0;
 };
@@ -76,6 +79,7 @@ nlohmann::json ToJson(const InfoResult& r) {
   j["genus"] = GenusArray(d.closed_genus);
   j["degenerate_faces"] = d.degenerate_faces;
   j["duplicate_positions"] = d.duplicate_positions;
+  j["self_crossing_faces"] = r.self_crossing_faces;
   j["bbox_diagonal"] = d.bbox_diagonal;
   j["manifold"] = d.IsManifold();
   j["polygons_triangulated"] = r.read.polygons_triangulated;
@@ -133,6 +137,8 @@ void PrintTable(const InfoResult& r) {
   row("genus (closed comps.)", GenusSummary(d.closed_genus));
   row("degenerate faces", num(d.degenerate_faces));
   row("duplicate positions", num(d.duplicate_positions));
+  row("self-crossing faces", num(r.self_crossing_faces) + " (an edge through another face: the surface passes "
+                                                          "through itself)");
   char diag[64];
   std::snprintf(diag, sizeof(diag), "%.6g", d.bbox_diagonal);
   row("bbox diagonal", diag);
@@ -184,6 +190,9 @@ int RunInfo(int argc, char** argv) {
   result.read_seconds = SecondsSince(start);
   const auto diagnose_start = std::chrono::steady_clock::now();
   result.diagnosis = Diagnose(*mesh);
+  if (StatusOr<TriangleBvh> bvh = TriangleBvh::Build(*mesh); bvh.ok()) {
+    result.self_crossing_faces = CountSelfCrossingFaces(*mesh, *bvh);
+  }
   result.diagnose_seconds = SecondsSince(diagnose_start);
   if (json) {
     std::printf("%s\n", ToJson(result).dump(2).c_str());

@@ -144,7 +144,14 @@ int RunRemesh(int argc, char** argv) {
   auto folds = eqmesh::CountFoldsAgainstInput(finest, surface);
   if (folds.ok()) {
     j["flipped_faces"] = folds->flipped_faces;
+    j["flipped_near_self_crossings"] = folds->flipped_near_self_crossings;
     j["degenerate_faces"] = folds->degenerate_faces;
+    if (folds->flipped_near_self_crossings > 0) {
+      report.notes.push_back(std::to_string(folds->flipped_near_self_crossings) + " of the " +
+                             std::to_string(folds->flipped_faces) +
+                             " flipped faces lie within 3 of their edges of where the input passes through itself "
+                             "(`eqmesh info`: self_crossing_faces)");
+    }
   }
   j["sliver_faces"] = eqmesh::CountSlivers(finest);
   const eqmesh::MeshDiagnosis in_diag = eqmesh::Diagnose(*mesh);

@@ -10,6 +10,7 @@
 #include "core/parallel_for.h"
 #include "mesh/mesh_topology.h"
 #include "mesh/triangle_bvh.h"
+#include "metrics/self_crossings.h"
 
 namespace eqmesh {
 
@@ -130,10 +131,16 @@ StatusOr<FoldReport> CountFoldsAgainstInput(const Mesh& remesh, const Mesh& inpu
         continue;
       }
       const uint32_t part = vertex_part.empty() ? kAnyPart : vertex_part[f[0]];
-      if (FacesAwayFromInput(bvh, input, face_part, part, a, b, c)) ++local.flipped_faces;
+      if (!FacesAwayFromInput(bvh, input, face_part, part, a, b, c)) continue;
+      ++local.flipped_faces;
+      const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+      if (CrossesItselfNear(input, bvh, (a + b + c) / 3.0, kSelfCrossingReach * longest)) {
+        ++local.flipped_near_self_crossings;
+      }
     }
     std::lock_guard<std::mutex> guard(lock);
     total.flipped_faces += local.flipped_faces;
+    total.flipped_near_self_crossings += local.flipped_near_self_crossings;
     total.degenerate_faces += local.degenerate_faces;
   });
   return total;

@@ -18,8 +18,16 @@ namespace eqmesh {
 
 struct FoldReport {
   size_t flipped_faces = 0;
+  // Of those, the faces within kSelfCrossingReach of their longest edge from a
+  // place where the input passes through itself (metrics/self_crossings.h).
+  size_t flipped_near_self_crossings = 0;
   size_t degenerate_faces = 0;
 };
+
+// How near a flipped face (in its longest edges, from its centroid) a crossing
+// of the input counts as its neighbourhood: a remesh face near a crossing has
+// its corners and centroid within a face or two of it.
+inline constexpr double kSelfCrossingReach = 3.0;
 
 // Triangle quality 4*sqrt(3)*area / (sum of squared edge lengths): 1 for an
 // equilateral triangle, 0 for a degenerate one.

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <random>
@@ -132,6 +133,33 @@ TEST(TriangleBvh, FilteredAndBoundedQueries) {
   EXPECT_TRUE(bvh->ClosestPoint({0, 0, 5}, 4.0 + 1e-12).found());
   EXPECT_FALSE(bvh->ClosestPointFiltered({0, 0, 0}, [](uint32_t) { return false; }).found());
   EXPECT_FALSE(bvh->ClosestPoint({NAN, 0, 0}).found());
+}
+
+// FacesWithin reports exactly the faces with a point within the radius.
+TEST(TriangleBvh, FacesWithinMatchesBruteForce) {
+  const Mesh mesh = testing::MakeIcosphere(3);
+  auto bvh = TriangleBvh::Build(mesh);
+  ASSERT_TRUE(bvh.ok());
+  TestRng rng(17);
+  std::vector<uint32_t> found;
+  for (int i = 0; i < 300; ++i) {
+    const Vec3 p = rng.InBox(1.5);
+    const double radius = rng.Uniform(0.0, 0.6);
+    bvh->FacesWithin(p, radius, &found);
+    std::sort(found.begin(), found.end());
+    std::vector<uint32_t> expected;
+    for (uint32_t f = 0; f < mesh.faces.size(); ++f) {
+      std::array<double, 3> bary;
+      const Vec3 q = ClosestPointOnTriangle(p, mesh.positions[mesh.faces[f][0]], mesh.positions[mesh.faces[f][1]],
+                                            mesh.positions[mesh.faces[f][2]], &bary);
+      if ((q - p).squaredNorm() <= radius * radius) expected.push_back(f);
+    }
+    EXPECT_EQ(found, expected) << "query " << i;
+  }
+  bvh->FacesWithin({NAN, 0, 0}, 1.0, &found);
+  EXPECT_TRUE(found.empty());
+  bvh->FacesWithin({0, 0, 0}, -1.0, &found);
+  EXPECT_TRUE(found.empty());
 }
 
 // A tree refitted to moved corners answers as one built from them: the same

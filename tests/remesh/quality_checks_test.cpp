@@ -4,9 +4,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+#include <utility>
 
 #include "mesh/triangle_bvh.h"
 #include "remesh/quality_checks.h"
+#include "test_support.h"
 
 namespace eqmesh {
 namespace {
@@ -123,6 +126,35 @@ TEST(CountFoldsAgainstInput, JudgesEachPartOfTheRemeshAgainstTheInputPartUnderMo
                                      remesh.positions[f[2]]);
   }
   EXPECT_GT(over_patch, 0u);
+}
+
+// The face of `mesh` whose centroid lies nearest p.
+uint32_t FaceNearest(const Mesh& mesh, const Vec3& p) {
+  uint32_t best = 0;
+  double best_d2 = std::numeric_limits<double>::infinity();
+  for (uint32_t f = 0; f < mesh.faces.size(); ++f) {
+    const Face& t = mesh.faces[f];
+    const Vec3 c = (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0;
+    if ((c - p).squaredNorm() < best_d2) best_d2 = (c - p).squaredNorm(), best = f;
+  }
+  return best;
+}
+
+// Two spheres modelled into each other cross on a circle in x = 1/2: of two
+// faces of the remesh turned over, the one beside that circle is counted as
+// near where the input crosses itself, the one on the far side is not.
+TEST(CountFoldsAgainstInput, SaysWhichFlippedFacesLieWhereTheInputCrossesItself) {
+  const Mesh sphere = testing::MakeIcosphere(3);
+  const Mesh input = testing::WithComponent(sphere, sphere, {1, 0, 0});
+  Mesh remesh = input;
+  for (const Vec3& p : {Vec3(0.5, std::sqrt(3.0) / 2.0, 0.0), Vec3(-1.0, 0.0, 0.0)}) {
+    Face& f = remesh.faces[FaceNearest(sphere, p)];
+    std::swap(f[1], f[2]);
+  }
+  const StatusOr<FoldReport> folds = CountFoldsAgainstInput(remesh, input);
+  ASSERT_TRUE(folds.ok());
+  EXPECT_EQ(folds->flipped_faces, 2u);
+  EXPECT_EQ(folds->flipped_near_self_crossings, 1u);
 }
 
 TEST(FacePartsForFoldTest, IsEmptyForAnInputOfOnePart) {
