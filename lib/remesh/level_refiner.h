@@ -64,6 +64,7 @@ class LevelRefiner {
   Vec3 FineMidpoint(uint32_t k, uint32_t* on_face) const;
   std::optional<RayHit> NearestHit(const Vec3& p, const Vec3& n, double reach, uint32_t part) const;
   bool FacesAlong(uint32_t input_face, const Vec3& n) const;
+  bool OnEdgeSheet(uint32_t k, uint32_t input_face) const;
   uint32_t EdgePart(uint32_t k) const;
   bool OnPart(uint32_t input_face, uint32_t part) const;
   std::optional<Vec3> ForwardMap(uint32_t root, const Vec3d& u, const Vec3& near, double reach, Chart* chart,

@@ -118,7 +118,7 @@ std::vector<EdgeChoice> LevelRefiner::NormalCandidates(uint32_t k, Chart* chart,
     // In 3D the diamond test cannot tell a thin part's two sides apart (both
     // project into it): there the input must face the way the prediction does,
     // and a part of the input that passes through the diamond is not this one.
-    if (fine_ && (!FacesAlong(hit.face, n) || !OnPart(hit.face, part))) continue;
+    if (fine_ && (!FacesAlong(hit.face, n) || !OnPart(hit.face, part) || !OnEdgeSheet(k, hit.face))) continue;
     EdgeChoice c;
     c.position = p + (hit.t - reach) * n;
     c.kind = VertexKind::kNormal;
@@ -259,6 +259,40 @@ uint32_t LevelRefiner::EdgePart(uint32_t k) const {
 
 bool LevelRefiner::OnPart(uint32_t input_face, uint32_t part) const {
   return part == kAnyPart || s_.face_part[input_face] == part;
+}
+
+// Whether `input_face` lies within two vertex rings of the input faces under
+// edge k's ends (true where either is unknown: a vertex the untangler moved).
+// On a level refined in 3D an edge is about as long as the input's or shorter, so the point
+// it refines to lies on a face next to its ends' faces; a sheet passing through
+// the diamond from elsewhere is not the one the edge remeshes (piercing.h).
+bool LevelRefiner::OnEdgeSheet(uint32_t k, uint32_t input_face) const {
+  const Edge& e = h_.OddEdge(j_, k);
+  const uint32_t fa = e[0] < on_face_.size() ? on_face_[e[0]] : kNoFace;
+  const uint32_t fb = e[1] < on_face_.size() ? on_face_[e[1]] : kNoFace;
+  if (fa == kNoFace || fb == kNoFace) return true;
+  if (input_face == fa || input_face == fb) return true;
+  const Mesh& m = *s_.mesh;
+  // Vertices within one ring of the target face; then whether a face of fa or
+  // fb has a vertex whose faces reach one of them.
+  thread_local std::vector<uint32_t> near;
+  near.clear();
+  for (uint32_t v : m.faces[input_face]) {
+    for (uint32_t i = s_.face_offsets[v]; i < s_.face_offsets[v + 1]; ++i) {
+      for (uint32_t w : m.faces[s_.vertex_faces[i]]) near.push_back(w);
+    }
+  }
+  std::sort(near.begin(), near.end());
+  for (uint32_t f : {fa, fb}) {
+    for (uint32_t v : m.faces[f]) {
+      for (uint32_t i = s_.face_offsets[v]; i < s_.face_offsets[v + 1]; ++i) {
+        for (uint32_t w : m.faces[s_.vertex_faces[i]]) {
+          if (std::binary_search(near.begin(), near.end(), w)) return true;
+        }
+      }
+    }
+  }
+  return false;
 }
 
 bool LevelRefiner::FacesAlong(uint32_t input_face, const Vec3& n) const {

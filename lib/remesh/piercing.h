@@ -28,6 +28,14 @@
 //    level-j faces and its chart image would be unfolded across all of them
 //    (bench meshes: 4-9x fewer folds, normal share 0.99 instead of 0.95, no
 //    degenerate faces from failed forward maps).
+//    There a hit is taken only on an input face within two vertex rings of
+//    the faces under the edge's ends (where those are known): the diamond test
+//    cannot tell the edge's own sheet from another that passes within reach (a
+//    curled thin part facing the same way, or a part modelled through the
+//    surface), and a hit there puts the vertex on the wrong sheet, a fold every
+//    later level inherits (mannequin-devil: 35 folds -> 1; dino keeps its five
+//    levels without folds instead of dropping to three;
+//    bench/log/2026-12-07-folds-where-the-input-crosses-itself.md).
 //  * Each level's folded faces and lopsided vertices are repaired before the
 //    next level is pierced from them (placement_repair.cpp), where Guskov et
 //    al. keep the hit closest to the prediction.
