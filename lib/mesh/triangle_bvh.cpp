@@ -550,11 +550,23 @@ void TriangleBvh::RayAllHits(const Vec3& origin, const Vec3& dir, double tmin, d
 
 std::optional<RayHit> TriangleBvh::RayFirstHit(const Vec3& origin, const Vec3& dir, double tmin,
                                                double tmax) const {
+  return RayFirstHitImpl(origin, dir, tmin, tmax, [](uint32_t) { return true; });
+}
+
+std::optional<RayHit> TriangleBvh::RayFirstHitFiltered(const Vec3& origin, const Vec3& dir, double tmin, double tmax,
+                                                       const std::function<bool(uint32_t)>& filter) const {
+  return RayFirstHitImpl(origin, dir, tmin, tmax, filter);
+}
+
+template <typename Filter>
+std::optional<RayHit> TriangleBvh::RayFirstHitImpl(const Vec3& origin, const Vec3& dir, double tmin, double tmax,
+                                                   const Filter& filter) const {
   std::optional<RayHit> best;
   if (!dir.allFinite() || dir.squaredNorm() == 0.0) return best;
   const double tol = kMergeFraction * scale_ / dir.norm();
   VisitRay(origin, dir, tmin, tmax, [&](uint32_t i, double* segment_tmax) {
     RayHit hit;
+    if (!filter(face_ids_[i])) return;
     if (!IntersectTriangle(origin, dir, triangles_[i], tmin, *segment_tmax, &hit)) return;
     hit.face = face_ids_[i];
     // Same tie rule as RayAllHits: within tol of the best t, prefer the face

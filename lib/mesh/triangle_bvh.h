@@ -88,6 +88,9 @@ class TriangleBvh {
   // The hit with smallest t in [tmin, tmax], if any.
   std::optional<RayHit> RayFirstHit(const Vec3& origin, const Vec3& dir, double tmin,
                                     double tmax) const;
+  // As RayFirstHit, among faces f with filter(f) == true.
+  std::optional<RayHit> RayFirstHitFiltered(const Vec3& origin, const Vec3& dir, double tmin, double tmax,
+                                            const std::function<bool(uint32_t)>& filter) const;
 
   // Internal layout, public only so the build helpers can name it.
   struct Node {
@@ -104,6 +107,9 @@ class TriangleBvh {
   void LoadCorners(const Mesh& mesh);
   template <typename Filter>
   ClosestPointResult ClosestPointImpl(const Vec3& p, double max_dist, const Filter& filter) const;
+  template <typename Filter>
+  std::optional<RayHit> RayFirstHitImpl(const Vec3& origin, const Vec3& dir, double tmin, double tmax,
+                                        const Filter& filter) const;
   template <typename Visit>
   void VisitRay(const Vec3& origin, const Vec3& dir, double tmin, double tmax, Visit&& visit) const;
 

@@ -117,9 +117,12 @@ StatusOr<FoldReport> CountFoldsAgainstInput(const Mesh& remesh, const Mesh& inpu
   const std::vector<uint32_t> vertex_part = RemeshVertexParts(remesh, bvh, face_part);
   const double tiny = DegenerateDoubleArea(input);
   FoldReport total;
+  // Centroid and reach (kSelfCrossingReach) of each flipped face.
+  std::vector<std::pair<Vec3, double>> flipped;
   std::mutex lock;
   ParallelFor(remesh.faces.size(), [&](size_t begin, size_t end, size_t) {
     FoldReport local;
+    std::vector<std::pair<Vec3, double>> local_flipped;
     for (size_t i = begin; i < end; ++i) {
       const Face& f = remesh.faces[i];
       const Vec3& a = remesh.positions[f[0]];
@@ -134,15 +137,16 @@ StatusOr<FoldReport> CountFoldsAgainstInput(const Mesh& remesh, const Mesh& inpu
       if (!FacesAwayFromInput(bvh, input, face_part, part, a, b, c)) continue;
       ++local.flipped_faces;
       const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
-      if (CrossesItselfNear(input, bvh, (a + b + c) / 3.0, kSelfCrossingReach * longest)) {
-        ++local.flipped_near_self_crossings;
-      }
+      local_flipped.push_back({(a + b + c) / 3.0, kSelfCrossingReach * longest});
     }
     std::lock_guard<std::mutex> guard(lock);
     total.flipped_faces += local.flipped_faces;
-    total.flipped_near_self_crossings += local.flipped_near_self_crossings;
     total.degenerate_faces += local.degenerate_faces;
+    flipped.insert(flipped.end(), local_flipped.begin(), local_flipped.end());
   });
+  if (flipped.empty()) return total;
+  EQMESH_ASSIGN_OR_RETURN(const SelfCrossingPoints crossings, SelfCrossingPoints::Find(input, bvh));
+  for (const auto& [centroid, reach] : flipped) total.flipped_near_self_crossings += crossings.Within(centroid, reach);
   return total;
 }
 

@@ -1,7 +1,7 @@
 // Where a mesh passes through itself (metrics/self_crossings.h): none on closed
 // surfaces that do not, the faces whose edges cross another face where two
-// shapes were modelled into each other, and the neighbourhood query the fold
-// reports use.
+// shapes were modelled into each other, and the crossing points the fold
+// reports query by distance.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -20,6 +20,13 @@ size_t SelfCrossingFaces(const Mesh& mesh) {
 }
 
 TEST(SelfCrossings, ClosedSurfacesThatDoNotCrossThemselvesHaveNone) {
+  const Mesh torus = testing::MakeTorus(24, 12);
+  auto bvh = TriangleBvh::Build(torus);
+  ASSERT_TRUE(bvh.ok());
+  const StatusOr<SelfCrossingPoints> points = SelfCrossingPoints::Find(torus, *bvh);
+  ASSERT_TRUE(points.ok());
+  EXPECT_EQ(points->size(), 0u);
+  EXPECT_FALSE(points->Within({1, 0, 0}, 10.0));
   EXPECT_EQ(SelfCrossingFaces(testing::MakeIcosphere(3)), 0u);
   EXPECT_EQ(SelfCrossingFaces(testing::MakeTorus(24, 12)), 0u);
   EXPECT_EQ(SelfCrossingFaces(testing::MakeCappedCylinder(0.2, 2.0, 16, 8)), 0u);
@@ -40,11 +47,16 @@ TEST(SelfCrossings, AnEdgeThroughAFaceMarksTheEdgesFace) {
   EXPECT_FALSE(EdgeCrossesAnotherFace(m, *bvh, 0));
   EXPECT_TRUE(EdgeCrossesAnotherFace(m, *bvh, 1));
   EXPECT_EQ(CountSelfCrossingFaces(m, *bvh), 1u);
-  // The crossings lie at (0, 0, 0) and (0.15, 0.1, 0).
-  EXPECT_TRUE(CrossesItselfNear(m, *bvh, {0.0, 0.0, 0.05}, 0.1));
-  EXPECT_FALSE(CrossesItselfNear(m, *bvh, {0.6, -0.6, 0.0}, 0.3));
+  // The crossings lie at (0, 0, 0) and (0.15, 0.1, 0), each found from both
+  // ends of its edge.
+  const StatusOr<SelfCrossingPoints> points = SelfCrossingPoints::Find(m, *bvh);
+  ASSERT_TRUE(points.ok());
+  EXPECT_EQ(points->size(), 4u);
+  EXPECT_TRUE(points->Within({0.0, 0.0, 0.05}, 0.1));
+  EXPECT_TRUE(points->Within({0.15, 0.1, 0.0}, 1e-9));
+  EXPECT_FALSE(points->Within({0.6, -0.6, 0.0}, 0.3));
   // Within the radius of p lies part of the big face, but no crossing.
-  EXPECT_FALSE(CrossesItselfNear(m, *bvh, {0.1, 0.5, 0.3}, 0.35));
+  EXPECT_FALSE(points->Within({0.1, 0.5, 0.3}, 0.35));
 }
 
 // Two unit spheres whose centres are one apart cross on a circle of radius
@@ -58,10 +70,12 @@ TEST(SelfCrossings, InterpenetratingSpheresCrossOnTheirCircle) {
   EXPECT_GT(crossing, 0u);
   EXPECT_LT(crossing, both.faces.size() / 4);  // a band along the circle
   const double r = std::sqrt(3.0) / 2.0;
-  EXPECT_TRUE(CrossesItselfNear(both, *bvh, {0.5, r, 0.0}, 0.1));
-  EXPECT_TRUE(CrossesItselfNear(both, *bvh, {0.5, 0.0, -r}, 0.1));
-  EXPECT_FALSE(CrossesItselfNear(both, *bvh, {-1.0, 0.0, 0.0}, 0.5));
-  EXPECT_FALSE(CrossesItselfNear(both, *bvh, {0.5, 0.0, 0.0}, 0.5));  // the lens' middle
+  const StatusOr<SelfCrossingPoints> points = SelfCrossingPoints::Find(both, *bvh);
+  ASSERT_TRUE(points.ok());
+  EXPECT_TRUE(points->Within({0.5, r, 0.0}, 0.1));
+  EXPECT_TRUE(points->Within({0.5, 0.0, -r}, 0.1));
+  EXPECT_FALSE(points->Within({-1.0, 0.0, 0.0}, 0.5));
+  EXPECT_FALSE(points->Within({0.5, 0.0, 0.0}, 0.5));  // the lens' middle
 }
 
 }  // namespace
