@@ -414,31 +414,6 @@ ClosestPointResult TriangleBvh::ClosestPointFiltered(const Vec3& p,
   return ClosestPointImpl(p, max_dist, filter);
 }
 
-void TriangleBvh::FacesWithin(const Vec3& p, double radius, std::vector<uint32_t>* out) const {
-  out->clear();
-  if (nodes_.empty() || !p.allFinite() || !(radius >= 0.0)) return;
-  const double r2 = radius * radius;
-  uint32_t stack[kStackSize];
-  int top = 0;
-  stack[top++] = 0;
-  while (top > 0) {
-    const Node& node = nodes_[stack[--top]];
-    if (SquaredDistanceToBox(p, node.lo, node.hi) > r2) continue;
-    if (node.count > 0) {
-      for (uint32_t i = node.first; i < node.first + node.count; ++i) {
-        const Triangle& tri = triangles_[i];
-        std::array<double, 3> bary;
-        if ((ClosestPointOnTriangle(p, tri.v0, tri.v1, tri.v2, &bary) - p).squaredNorm() <= r2) {
-          out->push_back(face_ids_[i]);
-        }
-      }
-      continue;
-    }
-    stack[top++] = node.first + 1;
-    stack[top++] = node.first;
-  }
-}
-
 namespace {
 
 // Slab test; NaN-free because axes with dir == 0 are handled separately.

@@ -74,10 +74,6 @@ class TriangleBvh {
       const Vec3& p, const std::function<bool(uint32_t)>& filter,
       double max_dist = std::numeric_limits<double>::infinity()) const;
 
-  // Every face with a point within `radius` of p, into *out (cleared first), in
-  // the tree's order (the same for the same tree and query).
-  void FacesWithin(const Vec3& p, double radius, std::vector<uint32_t>* out) const;
-
   // Every intersection of the segment origin + t*dir, t in [tmin, tmax], with
   // the surface, sorted by t (ties by face). Hits on a shared edge or vertex are
   // reported once: near-identical t values are merged. Rays lying in a

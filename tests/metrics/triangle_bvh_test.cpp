@@ -135,38 +135,6 @@ TEST(TriangleBvh, FilteredAndBoundedQueries) {
   EXPECT_FALSE(bvh->ClosestPoint({NAN, 0, 0}).found());
 }
 
-// The faces of m with a point within `radius` of p, in order.
-std::vector<uint32_t> BruteForceFacesWithin(const Mesh& m, const Vec3& p, double radius) {
-  std::vector<uint32_t> out;
-  for (uint32_t f = 0; f < m.faces.size(); ++f) {
-    std::array<double, 3> bary;
-    const Vec3 q = ClosestPointOnTriangle(p, m.positions[m.faces[f][0]], m.positions[m.faces[f][1]],
-                                          m.positions[m.faces[f][2]], &bary);
-    if ((q - p).squaredNorm() <= radius * radius) out.push_back(f);
-  }
-  return out;
-}
-
-// FacesWithin reports exactly the faces with a point within the radius.
-TEST(TriangleBvh, FacesWithinMatchesBruteForce) {
-  const Mesh sphere = testing::MakeIcosphere(3);
-  auto tree = TriangleBvh::Build(sphere);
-  ASSERT_TRUE(tree.ok());
-  TestRng rng(17);
-  std::vector<uint32_t> found;
-  for (int i = 0; i < 300; ++i) {
-    const Vec3 p = rng.InBox(1.5);
-    const double radius = rng.Uniform(0.0, 0.6);
-    tree->FacesWithin(p, radius, &found);
-    std::sort(found.begin(), found.end());
-    EXPECT_EQ(found, BruteForceFacesWithin(sphere, p, radius)) << "query " << i;
-  }
-  tree->FacesWithin({NAN, 0, 0}, 1.0, &found);
-  EXPECT_TRUE(found.empty());
-  tree->FacesWithin({0, 0, 0}, -1.0, &found);
-  EXPECT_TRUE(found.empty());
-}
-
 // A tree refitted to moved corners answers as one built from them: the same
 // distances for closest points and rays (here the corners are shrunk towards the
 // centre, so every box moves), and a refit to the positions it was built from
