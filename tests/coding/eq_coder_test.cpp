@@ -9,6 +9,7 @@
 #include "coding/eq/eq_encoder.h"
 #include "coding/eq/eq_layout.h"
 #include "coding/eq/eq_model.h"
+#include "core/thread_count.h"
 #include "test_support.h"
 
 namespace eqmesh {
@@ -172,6 +173,30 @@ TEST(EqCoder, RoundTripIsExactAndDeterministic) {
       }
      }
     }
+  }
+}
+
+// A level large enough for its two streams to iterate on two threads codes the
+// same bytes, reconstruction and side information as on one, and decodes exactly.
+TEST(EqCoder, TwoThreadsCodeWhatOneCodes) {
+  const SemiRegularHierarchy h = IcoHierarchy(5);
+  auto layout = BuildEqLevelLayout(h, 4);
+  ASSERT_TRUE(layout.ok());
+  ASSERT_GE(layout->size(), 4096u);  // the encoder's side-by-side threshold
+  const std::vector<Vec3> c = SyntheticCoefficients(h, 4, 23);
+  for (double step : {1e-3, 1e-5}) {
+    SetWorkerThreadLimit(1);
+    const Coded one = EncodeOrDie(*layout, c, LambdaForStep(step));
+    SetWorkerThreadLimit(2);
+    const Coded two = EncodeOrDie(*layout, c, LambdaForStep(step));
+    SetWorkerThreadLimit(0);
+    EXPECT_EQ(one.bytes, two.bytes);
+    EXPECT_EQ(one.recon, two.recon);
+    EXPECT_EQ(one.stats.iterations, two.stats.iterations);
+    EXPECT_EQ(one.stats.unpredictable, two.stats.unpredictable);
+    auto decoded = Decode(*layout, two.bytes.data(), two.bytes.size());
+    ASSERT_TRUE(decoded.ok()) << decoded.status().ToString();
+    EXPECT_EQ(*decoded, two.recon);
   }
 }
 

@@ -8,9 +8,15 @@
 
 #include "coding/entropy/ggd.h"
 #include "coding/entropy/range_coder.h"
+#include "core/parallel_for.h"
 
 namespace eqmesh {
 namespace {
+
+// Fewest coefficients for which a level's two streams iterate on two threads
+// (starting one costs tens of microseconds; a pass over this many takes about a
+// millisecond).
+constexpr size_t kSideBySideStreams = 4096;
 
 // Largest excess every entry can escape (order 0 is the tightest).
 constexpr int64_t kMaxEscapeExcess = (int64_t{1} << (kEqMaxEscapePrefix + 1)) - 2;
@@ -167,6 +173,22 @@ struct Partition {
   bool operator==(const Partition& o) const { return predictable == o.predictable; }
 };
 
+// What a causal pass chose for one value: all that coding it takes.
+struct Choice {
+  EqQuantizer quantizer;
+  int64_t index = 0;
+  EqContext ctx = EqContext::kPredictable;
+};
+
+// A causal pass over one stream under one side information: its partition, its
+// reconstruction and its choices, which code the stream as a pass with an
+// encoder would (the choices depend on the side information and the values alone).
+struct PassResult {
+  Partition partition;
+  std::vector<int64_t> recon;
+  std::vector<Choice> choices;
+};
+
 // One context-modelled stream of a level (normal values by scan position, or the
 // 1.3 tangential values 2i + c) and its lambda.
 class StreamEncoder {
@@ -216,27 +238,27 @@ class StreamEncoder {
     *side->MutableUnpredictableOf(terms_.tangential()) = unpred.ToClass(kEqMinLogSigma2, kEqMaxLogSigma2);
   }
 
-  // Steps 9-14: one causal pass; codes when enc is given. Returns the partition and
-  // adds the estimated cost sum (bits + lambda err^2) to *cost when given.
-  Partition Pass(const EqSideInfo& side, RangeEncoder* enc, EqEscapeModels* models,
-                 std::vector<int64_t>* recon, double* cost = nullptr) const {
-    Partition p;
-    p.predictable.assign(values_.size(), 0);
-    p.log_sigma2_hat.assign(values_.size(), 0);
-    recon->assign(values_.size(), 0);
-    for (size_t i = 0; i < values_.size(); ++i) {
-      const EqChoice c = ChooseQuantizer(side, recon->data(), terms_, i);
+  // Steps 9-14: one causal pass (into *out, whose buffers it reuses); returns
+  // the estimated cost sum (bits + lambda err^2).
+  double Pass(const EqSideInfo& side, PassResult* out) const {
+    const size_t n = values_.size();
+    Partition& p = out->partition;
+    p.predictable.assign(n, 0);
+    p.log_sigma2_hat.assign(n, 0);
+    out->recon.assign(n, 0);
+    out->choices.resize(n);
+    double cost = 0;
+    for (size_t i = 0; i < n; ++i) {
+      const EqChoice c = ChooseQuantizer(side, out->recon.data(), terms_, i);
       p.predictable[i] = c.ctx == EqContext::kPredictable || c.ctx == EqContext::kTangentialPredictable;
       p.log_sigma2_hat[i] = c.log_sigma2_hat;
       const int64_t q = ChooseIndex(values_[i], c.quantizer, lambda_q0_);
-      if (enc != nullptr) EncodeIndex(enc, c.quantizer, q, c.ctx, models);
-      (*recon)[i] = ReconstructIndex(c.quantizer, q);
-      if (cost != nullptr) {
-        const double err = values_[i] - static_cast<double>((*recon)[i]);
-        *cost += lambda_q0_ * err * err + (c.quantizer.codes_nothing() ? 0.0 : IndexBits(*c.quantizer.entry, q));
-      }
+      out->choices[i] = {c.quantizer, q, c.ctx};
+      out->recon[i] = ReconstructIndex(c.quantizer, q);
+      const double err = values_[i] - static_cast<double>(out->recon[i]);
+      cost += lambda_q0_ * err * err + (c.quantizer.codes_nothing() ? 0.0 : IndexBits(*c.quantizer.entry, q));
     }
-    return p;
+    return cost;
   }
 
  private:
@@ -246,22 +268,26 @@ class StreamEncoder {
 };
 
 // Steps 5-16: alternate parameter estimation and causal passes until the partition
-// the parameters were estimated from reproduces itself (or repeats: a cycle);
-// returns the side information of lowest estimated cost among those tried.
-EqSideInfo IterateClasses(const StreamEncoder& stream, EqSideInfo side, int max_iterations,
+// the parameters were estimated from reproduces itself (or repeats: a cycle).
+// Returns the side information of lowest estimated cost among those tried, with
+// its pass (*best), so the stream is coded from that pass instead of a pass of
+// its own: the choices are the same.
+EqSideInfo IterateClasses(const StreamEncoder& stream, EqSideInfo side, int max_iterations, PassResult* best,
                           EqEncodeStats* stats) {
   std::vector<Partition> history = {stream.InitialPartition()};
-  std::vector<int64_t> recon;
+  PassResult pass;
   EqSideInfo best_side = side;
   double best_cost = 0;
   for (int it = 0; it < std::max(1, max_iterations); ++it) {
     stream.EstimateClasses(history.back(), &side);
-    double cost = 0;
-    Partition next = stream.Pass(side, nullptr, nullptr, &recon, &cost);
-    if (it == 0 || cost < best_cost) {
+    const double cost = stream.Pass(side, &pass);
+    const bool improved = it == 0 || cost < best_cost;
+    if (improved) {
       best_cost = cost;
       best_side = side;
+      std::swap(*best, pass);
     }
+    const Partition& next = improved ? best->partition : pass.partition;
     if (stats != nullptr) {
       stats->iterations = it + 1;
       stats->last_change = 0;
@@ -278,9 +304,14 @@ EqSideInfo IterateClasses(const StreamEncoder& stream, EqSideInfo side, int max_
       if (stats != nullptr) stats->cycle_length = static_cast<int>(history.end() - seen);
       break;
     }
-    history.push_back(std::move(next));
+    history.push_back(next);
   }
   return best_side;
+}
+
+// Codes a stream as its pass chose.
+void CodeChoices(const std::vector<Choice>& choices, RangeEncoder* enc, EqEscapeModels* models) {
+  for (const Choice& c : choices) EncodeIndex(enc, c.quantizer, c.index, c.ctx, models);
 }
 
 // Streams 1.0-1.2: every tangential component with the one iid class.
@@ -353,9 +384,25 @@ StatusOr<std::vector<uint8_t>> EncodeEqLevel(const EqLevelLayout& layout,
   const StreamEncoder normal_stream(normal_terms, std::move(normal), lambda_q0);
   const StreamEncoder tangential_stream(tangential_terms, std::move(tangential), lambda_t);
   EqEncodeStats local_stats;
-  side = IterateClasses(normal_stream, side, options.max_iterations, &local_stats);
+  PassResult normal_pass, tangential_pass;
+  EqSideInfo normal_side = side, tangential_side = side;
+  // The two streams' iterations read and write disjoint parts of the side
+  // information (eq_model.h: each stream's classes), so they run side by side.
+  const auto iterate = [&](size_t stream) {
+    if (stream == 0) {
+      normal_side = IterateClasses(normal_stream, side, options.max_iterations, &normal_pass, &local_stats);
+    } else if (side.tangential_context) {
+      tangential_side = IterateClasses(tangential_stream, side, options.max_iterations, &tangential_pass, nullptr);
+    }
+  };
+  const size_t streams = side.tangential_context && n >= kSideBySideStreams ? 2 : 1;
+  ParallelFor(
+      streams, [&](size_t begin, size_t end, size_t) { for (size_t k = begin; k < end; ++k) iterate(k); }, 1);
+  if (streams == 1) iterate(1);
+  side = normal_side;
   if (side.tangential_context) {
-    side = IterateClasses(tangential_stream, side, options.max_iterations, nullptr);
+    side.tangential = tangential_side.tangential;
+    side.tangential_predictable = tangential_side.tangential_predictable;
   } else {
     GgdFit iid_tangential;
     for (double v : tangential_stream.values()) iid_tangential.Add(v);
@@ -365,10 +412,13 @@ StatusOr<std::vector<uint8_t>> EncodeEqLevel(const EqLevelLayout& layout,
   RangeEncoder enc;
   EncodeSideInfo(&enc, side, static_cast<uint32_t>(n));
   EqEscapeModels models;
-  std::vector<int64_t> recon, recon_t;
-  const Partition partition = normal_stream.Pass(side, &enc, &models, &recon);
+  CodeChoices(normal_pass.choices, &enc, &models);
+  const Partition& partition = normal_pass.partition;
+  const std::vector<int64_t>& recon = normal_pass.recon;
+  std::vector<int64_t> recon_t;
   if (side.tangential_context) {
-    tangential_stream.Pass(side, &enc, &models, &recon_t);
+    CodeChoices(tangential_pass.choices, &enc, &models);
+    recon_t = std::move(tangential_pass.recon);
   } else {
     recon_t = CodeIidTangential(side, tangential_stream.values(), lambda_t, &enc, &models);
   }

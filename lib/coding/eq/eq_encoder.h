@@ -1,8 +1,11 @@
 // EQ level encoder (Lavu, Choi, Baraniuk, SGP 2003, Sec. 3.3 steps 5-16; LoPresto,
 // Ramchandran, Orchard, DCC 1997): estimates the level's GGD side information,
 // iterates the predictable / unpredictable partition to convergence (for the normal
-// stream, then, in 1.3 chunks, for the tangential one, eq_model.h), then codes the
-// level once with the final side information. Per coefficient the quantizer comes
+// stream and, in 1.3 chunks, for the tangential one, eq_model.h: the two streams'
+// classes are disjoint parts of the side information, so on a large level they
+// iterate on two threads), then codes the level with the final side information,
+// as the iteration's pass under it chose (the choices depend on the side
+// information and the values alone, so the pass is not run again). Per coefficient the quantizer comes
 // from the shared integer model (eq_model.h); the index is the one of {0, k-1, k}
 // (k the dead-zone index) minimising J = R + lambda D, R from the bin frequencies.
 //
