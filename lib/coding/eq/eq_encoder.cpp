@@ -170,23 +170,16 @@ void EncodeSideInfo(RangeEncoder* enc, const EqSideInfo& side, uint32_t count) {
 struct Partition {
   std::vector<uint8_t> predictable;
   std::vector<int32_t> log_sigma2_hat;
-  bool operator==(const Partition& o) const { return predictable == o.predictable; }
 };
 
-// What a causal pass chose for one value: all that coding it takes.
-struct Choice {
-  EqQuantizer quantizer;
-  int64_t index = 0;
-  EqContext ctx = EqContext::kPredictable;
-};
-
-// A causal pass over one stream under one side information: its partition, its
-// reconstruction and its choices, which code the stream as a pass with an
-// encoder would (the choices depend on the side information and the values alone).
+// A causal pass over one stream under one side information: its partition (with
+// it and the side information, ChooseForEstimate gives each value's quantizer
+// again), its reconstruction and its indices. Coding them is what a pass with an
+// encoder would code: the choices depend on the side information and the values alone.
 struct PassResult {
   Partition partition;
   std::vector<int64_t> recon;
-  std::vector<Choice> choices;
+  std::vector<int64_t> indices;
 };
 
 // One context-modelled stream of a level (normal values by scan position, or the
@@ -246,14 +239,14 @@ class StreamEncoder {
     p.predictable.assign(n, 0);
     p.log_sigma2_hat.assign(n, 0);
     out->recon.assign(n, 0);
-    out->choices.resize(n);
+    out->indices.resize(n);
     double cost = 0;
     for (size_t i = 0; i < n; ++i) {
       const EqChoice c = ChooseQuantizer(side, out->recon.data(), terms_, i);
       p.predictable[i] = c.ctx == EqContext::kPredictable || c.ctx == EqContext::kTangentialPredictable;
       p.log_sigma2_hat[i] = c.log_sigma2_hat;
       const int64_t q = ChooseIndex(values_[i], c.quantizer, lambda_q0_);
-      out->choices[i] = {c.quantizer, q, c.ctx};
+      out->indices[i] = q;
       out->recon[i] = ReconstructIndex(c.quantizer, q);
       const double err = values_[i] - static_cast<double>(out->recon[i]);
       cost += lambda_q0_ * err * err + (c.quantizer.codes_nothing() ? 0.0 : IndexBits(*c.quantizer.entry, q));
@@ -274,12 +267,15 @@ class StreamEncoder {
 // its own: the choices are the same.
 EqSideInfo IterateClasses(const StreamEncoder& stream, EqSideInfo side, int max_iterations, PassResult* best,
                           EqEncodeStats* stats) {
-  std::vector<Partition> history = {stream.InitialPartition()};
+  const Partition initial = stream.InitialPartition();
+  // The classes of every partition so far, to see one come back.
+  std::vector<std::vector<uint8_t>> history = {initial.predictable};
+  const Partition* last = &initial;
   PassResult pass;
   EqSideInfo best_side = side;
   double best_cost = 0;
   for (int it = 0; it < std::max(1, max_iterations); ++it) {
-    stream.EstimateClasses(history.back(), &side);
+    stream.EstimateClasses(*last, &side);
     const double cost = stream.Pass(side, &pass);
     const bool improved = it == 0 || cost < best_cost;
     if (improved) {
@@ -292,10 +288,10 @@ EqSideInfo IterateClasses(const StreamEncoder& stream, EqSideInfo side, int max_
       stats->iterations = it + 1;
       stats->last_change = 0;
       for (size_t i = 0; i < next.predictable.size(); ++i) {
-        stats->last_change += next.predictable[i] != history.back().predictable[i];
+        stats->last_change += next.predictable[i] != history.back()[i];
       }
     }
-    const auto seen = std::find(history.begin(), history.end(), next);
+    const auto seen = std::find(history.begin(), history.end(), next.predictable);
     if (seen == history.end() - 1) {
       if (stats != nullptr) stats->converged = true;
       break;
@@ -304,14 +300,20 @@ EqSideInfo IterateClasses(const StreamEncoder& stream, EqSideInfo side, int max_
       if (stats != nullptr) stats->cycle_length = static_cast<int>(history.end() - seen);
       break;
     }
-    history.push_back(next);
+    history.push_back(next.predictable);
+    last = &next;
   }
   return best_side;
 }
 
-// Codes a stream as its pass chose.
-void CodeChoices(const std::vector<Choice>& choices, RangeEncoder* enc, EqEscapeModels* models) {
-  for (const Choice& c : choices) EncodeIndex(enc, c.quantizer, c.index, c.ctx, models);
+// Codes a stream as its pass under `side` chose.
+void CodePass(const EqSideInfo& side, bool tangential, const PassResult& pass, RangeEncoder* enc,
+              EqEscapeModels* models) {
+  const Partition& p = pass.partition;
+  for (size_t i = 0; i < pass.indices.size(); ++i) {
+    const EqChoice c = ChooseForEstimate(side, tangential, p.predictable[i] != 0, p.log_sigma2_hat[i]);
+    EncodeIndex(enc, c.quantizer, pass.indices[i], c.ctx, models);
+  }
 }
 
 // Streams 1.0-1.2: every tangential component with the one iid class.
@@ -412,12 +414,12 @@ StatusOr<std::vector<uint8_t>> EncodeEqLevel(const EqLevelLayout& layout,
   RangeEncoder enc;
   EncodeSideInfo(&enc, side, static_cast<uint32_t>(n));
   EqEscapeModels models;
-  CodeChoices(normal_pass.choices, &enc, &models);
+  CodePass(side, false, normal_pass, &enc, &models);
   const Partition& partition = normal_pass.partition;
   const std::vector<int64_t>& recon = normal_pass.recon;
   std::vector<int64_t> recon_t;
   if (side.tangential_context) {
-    CodeChoices(tangential_pass.choices, &enc, &models);
+    CodePass(side, true, tangential_pass, &enc, &models);
     recon_t = std::move(tangential_pass.recon);
   } else {
     recon_t = CodeIidTangential(side, tangential_stream.values(), lambda_t, &enc, &models);

@@ -125,15 +125,20 @@ int64_t ReconstructIndex(const EqQuantizer& quantizer, int64_t q) {
 
 EqChoice ChooseQuantizer(const EqSideInfo& side, const int64_t* recon, const EqContextTerms& terms,
                          size_t p) {
-  const bool t = terms.tangential();
-  const EqGgdClass& predictable = side.PredictableOf(t);
-  const int32_t lambda_code = t ? side.lambda_code + side.tangential_code : side.lambda_code;
+  int32_t log_sigma2_hat = 0;
+  const bool predictable = EstimateLogSigma2(recon, terms, p, &log_sigma2_hat);
+  return ChooseForEstimate(side, terms.tangential(), predictable, log_sigma2_hat);
+}
+
+EqChoice ChooseForEstimate(const EqSideInfo& side, bool tangential, bool predictable, int32_t log_sigma2_hat) {
+  const bool t = tangential;
   EqChoice c;
-  if (EstimateLogSigma2(recon, terms, p, &c.log_sigma2_hat)) {
+  c.log_sigma2_hat = log_sigma2_hat;
+  if (predictable) {
+    const EqGgdClass& cls = side.PredictableOf(t);
+    const int32_t lambda_code = t ? side.lambda_code + side.tangential_code : side.lambda_code;
     c.ctx = t ? EqContext::kTangentialPredictable : EqContext::kPredictable;
-    if (predictable.present) {
-      c.quantizer = SelectQuantizer(predictable.shape, c.log_sigma2_hat + predictable.log_sigma2, lambda_code);
-    }
+    if (cls.present) c.quantizer = SelectQuantizer(cls.shape, log_sigma2_hat + cls.log_sigma2, lambda_code);
     return c;
   }
   c.ctx = t ? EqContext::kTangential : EqContext::kUnpredictable;

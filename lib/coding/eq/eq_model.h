@@ -183,6 +183,10 @@ struct EqChoice {
 };
 EqChoice ChooseQuantizer(const EqSideInfo& side, const int64_t* recon, const EqContextTerms& terms,
                          size_t p);
+// The same choice from the estimate's outcome: whether the neighbourhood gave a
+// sigma-hat (`predictable`) and, if so, its log_sigma2_hat. An encoder that kept
+// a pass's partition chooses again from it without the neighbours.
+EqChoice ChooseForEstimate(const EqSideInfo& side, bool tangential, bool predictable, int32_t log_sigma2_hat);
 // Streams 1.0-1.2: the one quantizer of every tangential component.
 EqQuantizer TangentialQuantizer(const EqSideInfo& side);
 // The quantizer of a value whose causal neighbourhood is all zero (of the
