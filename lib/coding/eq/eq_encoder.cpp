@@ -13,9 +13,8 @@
 namespace eqmesh {
 namespace {
 
-// Fewest coefficients for which a level's two streams iterate on two threads
-// (starting one costs tens of microseconds; a pass over this many takes about a
-// millisecond).
+// Fewest coefficients for which a level's two streams iterate on two threads:
+// starting a thread costs tens of microseconds, too much for the coarse levels.
 constexpr size_t kSideBySideStreams = 4096;
 
 // Largest excess every entry can escape (order 0 is the tightest).
@@ -390,6 +389,7 @@ StatusOr<std::vector<uint8_t>> EncodeEqLevel(const EqLevelLayout& layout,
   EqSideInfo normal_side = side, tangential_side = side;
   // The two streams' iterations read and write disjoint parts of the side
   // information (eq_model.h: each stream's classes), so they run side by side.
+  // Stream 0 is the normal one, 1 the tangential one.
   const auto iterate = [&](size_t stream) {
     if (stream == 0) {
       normal_side = IterateClasses(normal_stream, side, options.max_iterations, &normal_pass, &local_stats);
@@ -397,10 +397,12 @@ StatusOr<std::vector<uint8_t>> EncodeEqLevel(const EqLevelLayout& layout,
       tangential_side = IterateClasses(tangential_stream, side, options.max_iterations, &tangential_pass, nullptr);
     }
   };
-  const size_t streams = side.tangential_context && n >= kSideBySideStreams ? 2 : 1;
-  ParallelFor(
-      streams, [&](size_t begin, size_t end, size_t) { for (size_t k = begin; k < end; ++k) iterate(k); }, 1);
-  if (streams == 1) iterate(1);
+  if (side.tangential_context && n >= kSideBySideStreams) {
+    ParallelFor(2, [&](size_t begin, size_t end, size_t) { for (size_t k = begin; k < end; ++k) iterate(k); }, 1);
+  } else {
+    iterate(0);
+    iterate(1);
+  }
   side = normal_side;
   if (side.tangential_context) {
     side.tangential = tangential_side.tangential;
