@@ -225,7 +225,7 @@ class StreamEncoder {
     EqGgdClass* predictable = side->MutablePredictableOf(terms_.tangential());
     *predictable = pred.ToClass(-kEqMaxGain, kEqMaxGain);
     // A predictable class with nothing in it still needs a quantizer should the
-    // final pass classify differently: keep it present with unit gain.
+    // pass under it classify differently: keep it present with unit gain.
     if (!predictable->present) *predictable = {true, 5, 0};
     *side->MutableUnpredictableOf(terms_.tangential()) = unpred.ToClass(kEqMinLogSigma2, kEqMaxLogSigma2);
   }

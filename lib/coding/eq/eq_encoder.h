@@ -46,7 +46,7 @@ struct EqEncodeOptions {
 };
 
 struct EqEncodeStats {
-  int iterations = 0;        // passes run before the final coding pass
+  int iterations = 0;        // passes run (the level is coded as the best of them chose)
   bool converged = false;    // the partition reached a fixed point
   int cycle_length = 0;      // > 0: it entered a cycle of this period instead
   uint32_t last_change = 0;  // coefficients that changed class in the last iteration
