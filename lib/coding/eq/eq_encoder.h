@@ -5,9 +5,10 @@
 // classes are disjoint parts of the side information, so on a large level they
 // iterate on two threads), then codes the level with the final side information,
 // as the iteration's pass under it chose (the choices depend on the side
-// information and the values alone, so the pass is not run again). Per coefficient the quantizer comes
-// from the shared integer model (eq_model.h); the index is the one of {0, k-1, k}
-// (k the dead-zone index) minimising J = R + lambda D, R from the bin frequencies.
+// information and the values alone, so the pass is not run again). Per
+// coefficient the quantizer comes from the shared integer model (eq_model.h);
+// the index is the one of {0, k-1, k} (k the dead-zone index) minimising
+// J = R + lambda D, R from the bin frequencies.
 //
 // Departures: the partition can enter a short cycle (parameters of A give partition
 // B and those of B give A); iteration stops at a fixed point, at a repeated

@@ -130,8 +130,7 @@ EqChoice ChooseQuantizer(const EqSideInfo& side, const int64_t* recon, const EqC
   return ChooseForEstimate(side, terms.tangential(), predictable, log_sigma2_hat);
 }
 
-EqChoice ChooseForEstimate(const EqSideInfo& side, bool tangential, bool predictable, int32_t log_sigma2_hat) {
-  const bool t = tangential;
+EqChoice ChooseForEstimate(const EqSideInfo& side, bool t, bool predictable, int32_t log_sigma2_hat) {
   EqChoice c;
   c.log_sigma2_hat = log_sigma2_hat;
   if (predictable) {
